@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+// What every genflow subcommand shares: loading a mesh the way the CLI promises (read,
+// validate, refuse with one line), and the exception that carries an exit code.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "genflow/mesh.h"
+#include "genflow/mesh/validate.h"
+
+namespace genflow::cli {
+
+/// Exit codes of the genflow tool (documented in the README).
+enum ExitCode : int {
+    kSuccess = 0,
+    kFailure = 1,   ///< the computation failed (solver, output not writable)
+    kBadInput = 2,  ///< an input file or an argument was refused
+};
+
+/// A mesh read by the CLI, with everything that was noticed on the way.
+struct LoadedMesh {
+    std::filesystem::path path;
+    TriangleMesh mesh;
+    std::vector<std::string> read_warnings;
+    ValidationReport report;
+};
+
+/// Reads and validates `path`. Throws IoError "<path>: <first validation error>" if the mesh
+/// has an error that no genflow algorithm can handle.
+LoadedMesh load_mesh(const std::filesystem::path& path);
+
+/// Prints "warning: <line>" on stderr for each reader warning and each validation warning.
+void print_warnings(const LoadedMesh& loaded);
+
+}  // namespace genflow::cli

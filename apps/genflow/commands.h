@@ -1,0 +1,12 @@
+// SPDX-License-Identifier: MIT
+// Each subcommand registers itself on the CLI11 app; its callback does the work.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace genflow::cli {
+
+void register_info_command(CLI::App& app);
+void register_demo_command(CLI::App& app);
+
+}  // namespace genflow::cli

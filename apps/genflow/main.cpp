@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// The genflow command-line tool. No algorithm code lives here: each subcommand parses its
+// arguments, calls the library and reports. Errors become one line on stderr and an exit code.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "cli_support.h"
+#include "commands.h"
+#include "genflow/exceptions.h"
+
+int main(int argc, char** argv) {
+    using namespace genflow::cli;
+    CLI::App app{
+        "genflow: generalized gradient flows of triangle meshes (Eckstein et al., SGP 2007)",
+        "genflow"};
+    app.set_version_flag("--version", "genflow 0.1.0");
+    app.require_subcommand(1);
+    register_info_command(app);
+    register_demo_command(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) {  // --help, --version
+            return app.exit(e);
+        }
+        std::cerr << "genflow: " << e.what() << " (run 'genflow --help')\n";
+        return kBadInput;
+    } catch (const genflow::IoError& e) {
+        std::cerr << "genflow: " << e.what() << '\n';
+        return kBadInput;
+    } catch (const genflow::InvalidInput& e) {
+        std::cerr << "genflow: " << e.what() << '\n';
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::cerr << "genflow: " << e.what() << '\n';
+        return kFailure;
+    }
+    return kSuccess;
+}

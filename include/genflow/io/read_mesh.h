@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "genflow/io/mesh_format.h"
+#include "genflow/mesh.h"
+
+namespace genflow {
+
+/// Reads a triangle mesh from an OBJ, PLY (ascii, binary little or big endian), OFF or STL
+/// (ascii or binary) file; the format is chosen by the extension.
+///
+/// - Polygons with more than three corners are split into a fan of triangles around their first
+///   corner, and a warning says how many were split. Faces with fewer than three corners are
+///   dropped with a warning.
+/// - STL stores a triangle soup: vertices with bitwise-equal coordinates are merged, in order of
+///   first appearance.
+/// - Everything but positions and faces (normals, colours, texture coordinates, materials,
+///   extra PLY elements and properties) is skipped.
+/// - Nothing is checked beyond what is needed to parse the file: call `validate()` on the result
+///   for non-finite coordinates, indices out of range, degenerate or non-manifold faces.
+///
+/// Readers of PLY, OFF and STL are our own and are fuzzed: a malformed or truncated file raises
+/// IoError, it never crashes, hangs or allocates more than the file's size can justify. OBJ is
+/// read by tinyobjloader.
+///
+/// \param warnings  if given, receives one line per recoverable oddity of the file.
+/// \throws IoError  "<path>: <problem>" if the file cannot be opened, its extension is unknown,
+///                  or its content is malformed.
+[[nodiscard]] TriangleMesh read_mesh(const std::filesystem::path& path,
+                                     std::vector<std::string>* warnings = nullptr);
+
+/// Parses a mesh held in memory; the same as `read_mesh` without the file. `source_name`
+/// prefixes the messages of thrown IoErrors and warnings.
+[[nodiscard]] TriangleMesh parse_mesh(std::string_view bytes, MeshFormat format,
+                                      std::string_view source_name = "<memory>",
+                                      std::vector<std::string>* warnings = nullptr);
+
+}  // namespace genflow

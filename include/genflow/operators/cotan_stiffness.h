@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <Eigen/SparseCore>
+
+#include "genflow/mesh.h"
+
+namespace genflow {
+
+/// Options of `cotan_stiffness()`.
+struct CotanOptions {
+    /// Cotangents are clamped to [−max_cotangent, max_cotangent]. The default (angles below
+    /// about 0.06° or above 179.94°) only touches needle and cap triangles, whose exact
+    /// stiffness would make the matrices of the flows needlessly ill-conditioned; well-shaped
+    /// meshes are assembled exactly.
+    double max_cotangent = 1e3;
+};
+
+/// The cotangent stiffness matrix K (paper §2, SPEC.md §1), #V×#V, sparse:
+///
+///     K_ij = −½ (cot α_ij + cot β_ij)   for an edge ij (one term on a boundary edge),
+///     K_ii = −Σ_{j≠i} K_ij,
+///
+/// with α_ij, β_ij the angles opposite the edge.
+///
+/// **Sign convention:** K is symmetric *positive* semi-definite and K·1 = 0; it is the FEM
+/// stiffness matrix ∫∇φ_i·∇φ_j. In SPEC.md's notation K = −C, where C is the (negative
+/// semi-definite) cotan Laplacian, so the Laplace–Beltrami operator is Δ = −M⁻¹K, the area
+/// gradient is ∂A/∂X = K X, and the H1 metric is G = M + λK.
+///
+/// \note Works on any triangle mesh: boundaries, several components, non-manifold edges.
+///       Zero-area faces contribute nothing; cotangents are clamped (see CotanOptions), so the
+///       result is always finite.
+/// \throws InvalidInput if F indexes outside V or V holds a non-finite coordinate.
+[[nodiscard]] Eigen::SparseMatrix<double> cotan_stiffness(const TriangleMesh& mesh,
+                                                          const CotanOptions& options = {});
+
+}  // namespace genflow

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs everything genflow needs from Debian 12 packages. Idempotent: does nothing when all
+# packages are present; otherwise runs apt-get (as root, or through sudo).
+set -euo pipefail
+packages=(
+  cmake ninja-build g++ pkg-config
+  libeigen3-dev libsuitesparse-dev libnanoflann-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev
+  clang clang-format libfuzzer-14-dev
+)
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+if [[ ${#missing[@]} -eq 0 ]]; then
+  exit 0
+fi
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then
+  sudo="sudo"
+fi
+echo "install-deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: MIT
+// Private per-triangle geometry shared by the operators: edge vectors, area, degeneracy and
+// clamped cotangents, computed the same way everywhere.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "genflow/exceptions.h"
+#include "genflow/mesh.h"
+
+namespace genflow::detail {
+
+/// True if no coordinate is NaN or infinite. Written with std::isfinite rather than Eigen's
+/// allFinite(), which computes x − x and so raises FE_INVALID on infinities (our Debug tests
+/// trap floating-point exceptions).
+inline bool all_finite(const Eigen::MatrixX3d& V) {
+    return std::all_of(V.data(), V.data() + V.size(), [](double x) { return std::isfinite(x); });
+}
+
+/// Throws InvalidInput naming `function` unless every index of F lies in [0, #V) and every
+/// coordinate of V is finite. O(#V + #F): cheap enough for every public entry point.
+inline void require_valid_mesh(const TriangleMesh& mesh, const char* function) {
+    if (mesh.F.size() > 0 && (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows())) {
+        throw InvalidInput(std::string(function) + ": face indices must lie in [0, " +
+                           std::to_string(mesh.V.rows()) + "), got [" +
+                           std::to_string(mesh.F.minCoeff()) + ", " +
+                           std::to_string(mesh.F.maxCoeff()) + "]");
+    }
+    if (!all_finite(mesh.V)) {
+        throw InvalidInput(std::string(function) + ": vertex positions must be finite");
+    }
+}
+
+/// Corner positions and derived quantities of face f.
+struct Triangle {
+    Eigen::Vector3d x[3];
+    Eigen::Vector3d cross;  // (x1 − x0)×(x2 − x0): twice the area times the unit normal
+    double double_area = 0;
+
+    Triangle(const TriangleMesh& mesh, Eigen::Index f) {
+        for (int k = 0; k < 3; ++k) {
+            x[k] = mesh.V.row(mesh.F(f, k)).transpose();
+        }
+        cross = (x[1] - x[0]).cross(x[2] - x[0]);
+        double_area = cross.norm();
+    }
+
+    /// Zero area up to rounding, relative to the longest edge: no normal, no angles.
+    [[nodiscard]] bool degenerate() const {
+        const double longest = std::max({(x[1] - x[0]).squaredNorm(), (x[2] - x[1]).squaredNorm(),
+                                         (x[0] - x[2]).squaredNorm()});
+        return !(double_area > 1e-12 * longest);
+    }
+
+    [[nodiscard]] double area() const { return 0.5 * double_area; }
+
+    /// Edge vector opposite corner k, from corner k+1 to corner k+2.
+    [[nodiscard]] Eigen::Vector3d opposite_edge(int k) const {
+        return x[(k + 2) % 3] - x[(k + 1) % 3];
+    }
+
+    /// cot of the angle at corner k, clamped to ±max_cot. Only for non-degenerate faces.
+    [[nodiscard]] double cot(int k, double max_cot) const {
+        const Eigen::Vector3d u = x[(k + 1) % 3] - x[k];
+        const Eigen::Vector3d v = x[(k + 2) % 3] - x[k];
+        return std::clamp(u.dot(v) / double_area, -max_cot, max_cot);
+    }
+};
+
+}  // namespace genflow::detail

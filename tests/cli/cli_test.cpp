@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// The genflow tool end to end: help, info (text and JSON), demo, and the one-line errors with
+// exit code 2 for every kind of bad input.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_runner.h"
+#include "genflow/io/write_mesh.h"
+#include "genflow/mesh/primitives.h"
+
+namespace genflow {
+namespace {
+
+using test::quoted;
+using test::run_genflow;
+
+int count_lines(const std::string& text) {
+    return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+
+TEST(Cli, HelpListsEverySubcommandAndOption) {
+    const auto top = run_genflow("--help");
+    EXPECT_EQ(top.exit_code, 0);
+    EXPECT_NE(top.out.find("info"), std::string::npos);
+    EXPECT_NE(top.out.find("demo"), std::string::npos);
+    const auto info = run_genflow("info --help");
+    EXPECT_EQ(info.exit_code, 0);
+    EXPECT_NE(info.out.find("--json"), std::string::npos);
+    const auto demo = run_genflow("demo --help");
+    EXPECT_NE(demo.out.find("--output-dir"), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsAreOneLineWithExitCode2) {
+    for (const char* arguments :
+         {"", "frobnicate", "info", "info a.ply b.ply", "info --bogus x.ply"}) {
+        const auto result = run_genflow(arguments);
+        EXPECT_EQ(result.exit_code, 2) << arguments;
+        EXPECT_EQ(count_lines(result.err), 1) << arguments << ": " << result.err;
+        EXPECT_TRUE(result.out.empty()) << arguments;
+    }
+}
+
+TEST(Cli, InfoTextAndJsonOnAGeneratedTorus) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "torus.off", make_torus(30, 12));
+    const auto text = run_genflow("info " + quoted(directory / "torus.off"));
+    EXPECT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("vertices 360, faces 720, edges 1080"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("genus 1"), std::string::npos) << text.out;
+    EXPECT_TRUE(text.err.empty());
+
+    const auto json_run = run_genflow("info --json " + quoted(directory / "torus.off"));
+    ASSERT_EQ(json_run.exit_code, 0);
+    const auto json = nlohmann::json::parse(json_run.out);
+    EXPECT_EQ(json["vertices"], 360);
+    EXPECT_EQ(json["faces"], 720);
+    EXPECT_EQ(json["edges"], 1080);
+    EXPECT_EQ(json["genus"], 1);
+    EXPECT_EQ(json["components"], 1);
+    EXPECT_EQ(json["closed"], true);
+    EXPECT_EQ(json["manifold"], true);
+    EXPECT_NEAR(json["volume"].get<double>(), 2 * M_PI * M_PI * 0.16,
+                0.06 * 2 * M_PI * M_PI * 0.16);
+    EXPECT_TRUE(json["validation"]["issues"].empty());
+    for (const char* key : {"file", "area", "bbox_min", "bbox_max", "bbox_diagonal",
+                            "mean_edge_length", "euler_characteristic", "boundary_loops",
+                            "inward_oriented", "consistently_oriented", "read_warnings"}) {
+        EXPECT_TRUE(json.contains(key)) << key;
+    }
+}
+
+TEST(Cli, InfoReportsWarningsOfAnOpenNonManifoldMesh) {
+    const test::TemporaryDirectory directory;
+    test::write_bytes(
+        directory / "bowtie.obj",
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nv 9 9 9\nf 1 2 3\nf 1 4 5\n");
+    const auto result = run_genflow("info --json " + quoted(directory / "bowtie.obj"));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto json = nlohmann::json::parse(result.out);
+    EXPECT_EQ(json["manifold"], false);
+    EXPECT_EQ(json["validation"]["non_manifold_vertices"], 1);
+    EXPECT_EQ(json["validation"]["unreferenced_vertices"], 1);
+    EXPECT_TRUE(json["genus"].is_null());
+    EXPECT_EQ(json["validation"]["issues"][0]["severity"], "warning");
+}
+
+struct BadFile {
+    const char* name;
+    std::string bytes;
+    const char* expected;
+};
+
+TEST(Cli, BadFilesAreRefusedWithOneLineNamingTheFile) {
+    const test::TemporaryDirectory directory;
+    const std::vector<BadFile> files = {
+        {"empty.ply", "", "empty file"},
+        {"nan.off", "OFF\n3 1 0\nnan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "non-finite coordinates"},
+        {"inf.obj", "v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n", "non-finite coordinates"},
+        {"index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "out of range"},
+        {"nofaces.ply",
+         "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 0\nproperty list uchar int vertex_indices\n"
+         "end_header\n0 0 0\n",
+         "mesh has no faces"},
+        {"truncated.ply",
+         "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\n"
+         "property float y\nproperty float z\nend_header\n\x01\x02\x03",
+         "more than the file can hold"},
+        {"text.stl", "not an stl at all", "not an STL file"},
+        {"mesh.dat", "whatever", "unknown mesh format"},
+    };
+    for (const auto& file : files) {
+        test::write_bytes(directory / file.name, file.bytes);
+        for (const char* flags : {"", "--json "}) {
+            const auto result =
+                run_genflow(std::string("info ") + flags + quoted(directory / file.name));
+            EXPECT_EQ(result.exit_code, 2) << file.name;
+            EXPECT_EQ(count_lines(result.err), 1) << file.name << ": " << result.err;
+            EXPECT_NE(result.err.find((directory / file.name).string()), std::string::npos)
+                << result.err;
+            EXPECT_NE(result.err.find(file.expected), std::string::npos) << result.err;
+            EXPECT_TRUE(result.out.empty()) << file.name;
+        }
+    }
+    const auto missing = run_genflow("info " + quoted(directory / "missing.obj"));
+    EXPECT_EQ(missing.exit_code, 2);
+    EXPECT_NE(missing.err.find("no such file"), std::string::npos);
+}
+
+TEST(Cli, DemoWritesItsMeshAndReportsOnIt) {
+    const test::TemporaryDirectory directory;
+    const auto result = run_genflow("demo --output-dir " + quoted(directory / "out"));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_TRUE(std::filesystem::exists(directory / "out" / "torus_noisy.ply"));
+    EXPECT_NE(result.out.find("genus 1"), std::string::npos) << result.out;
+}
+
+TEST(Cli, DemoIntoAnUnwritablePlaceFailsCleanly) {
+    const test::TemporaryDirectory directory;
+    test::write_bytes(directory / "file", "x");
+    const auto result = run_genflow("demo --output-dir " + quoted(directory / "file" / "sub"));
+    EXPECT_NE(result.exit_code, 0);
+    EXPECT_EQ(count_lines(result.err), 1) << result.err;
+}
+
+}  // namespace
+}  // namespace genflow

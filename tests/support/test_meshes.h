@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// Meshes and helpers shared by the tests. Everything is generated: no data files needed.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "genflow/mesh.h"
+
+namespace genflow::test {
+
+/// Icosphere of `level` with every vertex moved by Gaussian noise of `relative_sigma` times the
+/// mean edge length: irregular, but still closed and well-shaped.
+TriangleMesh noisy_icosphere(int level, double relative_sigma = 0.1, unsigned seed = 1);
+
+/// Torus with vertex noise, as above.
+TriangleMesh noisy_torus(int rings, int sides, double relative_sigma = 0.1, unsigned seed = 2);
+
+/// A planar grid whose interior vertices are jittered inside the plane z = 0.
+TriangleMesh jittered_grid(int cells, unsigned seed = 3);
+
+/// Central finite differences of a scalar function of the positions, step h.
+VertexField finite_difference_gradient(const std::function<double(const TriangleMesh&)>& energy,
+                                       const TriangleMesh& mesh, double h = 1e-6);
+
+/// ‖a − b‖ / ‖b‖ (Frobenius).
+double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
+
+/// The data directory: $GENFLOW_DATA, else ../shared/data beside the source tree; nothing if
+/// it does not exist (tests that need it skip with a message).
+std::optional<std::filesystem::path> data_directory();
+
+/// A fresh, empty temporary directory, removed when the object dies.
+class TemporaryDirectory {
+public:
+    TemporaryDirectory();
+    ~TemporaryDirectory();
+    TemporaryDirectory(const TemporaryDirectory&) = delete;
+    TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
+    [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+    [[nodiscard]] std::filesystem::path operator/(const std::string& name) const {
+        return path_ / name;
+    }
+
+private:
+    std::filesystem::path path_;
+};
+
+/// Writes `bytes` to `path` as they are (for malformed-file tests).
+void write_bytes(const std::filesystem::path& path, const std::string& bytes);
+
+}  // namespace genflow::test
