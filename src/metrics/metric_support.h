@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// Private helpers shared by the metrics.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+#include "genflow/exceptions.h"
+#include "genflow/mesh.h"
+#include "genflow/operators/mass_matrix.h"
+
+namespace genflow::detail {
+
+/// The mass matrix of `type` with every diagonal entry floored at 1e-10 × the mean diagonal,
+/// so that isolated or fully degenerate vertices keep G positive definite. Their differentials
+/// vanish, so the floor changes no velocity of a vertex that has area.
+Eigen::SparseMatrix<double> floored_mass_matrix(const TriangleMesh& mesh, MassType type);
+
+/// The lumped masses of `type` (row sums for Full), floored as above.
+Eigen::VectorXd floored_lumped_masses(const TriangleMesh& mesh, MassType type);
+
+/// Throws InvalidInput naming `caller` unless the mask is empty or has one entry per vertex.
+inline void require_mask_size(const std::vector<bool>& mask, Eigen::Index vertices,
+                              const char* caller) {
+    if (!mask.empty() && static_cast<Eigen::Index>(mask.size()) != vertices) {
+        throw InvalidInput(std::string(caller) + ": fixed-vertex mask has " +
+                           std::to_string(mask.size()) + " entries for " +
+                           std::to_string(vertices) + " vertices");
+    }
+}
+
+/// Throws InvalidInput naming `caller` unless `field` has `rows` rows.
+inline void require_rows(const VertexField& field, Eigen::Index rows, const char* caller) {
+    if (field.rows() != rows) {
+        throw InvalidInput(std::string(caller) + ": field has " + std::to_string(field.rows()) +
+                           " rows, the mesh " + std::to_string(rows) +
+                           " vertices (was update() called?)");
+    }
+}
+
+}  // namespace genflow::detail

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+#include "genflow/metrics/sobolev_metric.h"
+
+#include <cmath>
+
+#include "genflow/exceptions.h"
+#include "genflow/operators/cotan_stiffness.h"
+#include "metrics/metric_support.h"
+
+namespace genflow {
+
+H1Metric::H1Metric(SobolevOptions options) : options_(options) {
+    if (!(options_.lambda > 0) || !std::isfinite(options_.lambda)) {
+        throw InvalidInput("H1Metric: lambda must be positive and finite, got " +
+                           std::to_string(options_.lambda));
+    }
+}
+
+Eigen::SparseMatrix<double> H1Metric::assemble(const TriangleMesh& mesh) const {
+    return detail::floored_mass_matrix(mesh, options_.mass) +
+           options_.lambda * cotan_stiffness(mesh);
+}
+
+H2Metric::H2Metric(SobolevOptions options) : options_(options) {
+    if (!(options_.lambda > 0) || !std::isfinite(options_.lambda)) {
+        throw InvalidInput("H2Metric: lambda must be positive and finite, got " +
+                           std::to_string(options_.lambda));
+    }
+    if (!(options_.mu >= 0) || !std::isfinite(options_.mu)) {
+        throw InvalidInput("H2Metric: mu must be non-negative and finite, got " +
+                           std::to_string(options_.mu));
+    }
+}
+
+Eigen::SparseMatrix<double> H2Metric::assemble(const TriangleMesh& mesh) const {
+    const Eigen::SparseMatrix<double> K = cotan_stiffness(mesh);
+    const Eigen::VectorXd d = detail::floored_lumped_masses(mesh, MassType::Barycentric);
+    const Eigen::SparseMatrix<double> KDinvK = K * d.cwiseInverse().asDiagonal() * K;
+    return detail::floored_mass_matrix(mesh, options_.mass) + options_.lambda * K +
+           options_.mu * KDinvK;
+}
+
+}  // namespace genflow

@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: MIT
+#include "genflow/metrics/sparse_metric.h"
+
+#include <cmath>
+
+#include "metrics/metric_support.h"
+#include "numerics/spd_solver.h"
+#include "operators/triangle.h"
+
+namespace genflow {
+
+namespace {
+
+// Replaces the rows and columns of fixed vertices by those of the identity, keeping the
+// sparsity pattern (explicit zeros) so that the symbolic analysis stays reusable.
+void pin_fixed(Eigen::SparseMatrix<double>& S, const std::vector<bool>& fixed) {
+    if (fixed.empty()) {
+        return;
+    }
+    for (Eigen::Index col = 0; col < S.outerSize(); ++col) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(S, col); it; ++it) {
+            if (fixed[static_cast<std::size_t>(it.row())] ||
+                fixed[static_cast<std::size_t>(it.col())]) {
+                it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+            }
+        }
+    }
+}
+
+VertexField zero_fixed_rows(VertexField field, const std::vector<bool>& fixed) {
+    for (std::size_t i = 0; i < fixed.size(); ++i) {
+        if (fixed[i]) {
+            field.row(static_cast<Eigen::Index>(i)).setZero();
+        }
+    }
+    return field;
+}
+
+}  // namespace
+
+struct SparseMetric::Impl {
+    Eigen::SparseMatrix<double> G;
+    detail::SpdSolver metric_solver;   // factors G (pinned)
+    detail::SpdSolver shifted_solver;  // factors G + dt·A (pinned)
+    std::vector<bool> fixed;           // the mask in force since the last update()
+    bool ready = false;
+};
+
+SparseMetric::SparseMetric() : impl_(std::make_unique<Impl>()) {}
+SparseMetric::~SparseMetric() = default;
+SparseMetric::SparseMetric(SparseMetric&&) noexcept = default;
+SparseMetric& SparseMetric::operator=(SparseMetric&&) noexcept = default;
+
+void SparseMetric::update(const TriangleMesh& mesh) {
+    detail::require_valid_mesh(mesh, "SparseMetric::update");
+    if (mesh.F.rows() == 0) {
+        throw InvalidInput("SparseMetric::update: mesh has no faces");
+    }
+    detail::require_mask_size(fixed_, mesh.V.rows(), "SparseMetric::update");
+    impl_->ready = false;
+    impl_->G = assemble(mesh);
+    impl_->G.makeCompressed();
+    if (impl_->G.rows() != mesh.V.rows() || impl_->G.cols() != mesh.V.rows()) {
+        throw InvalidInput("SparseMetric::update: assemble() must return a #V×#V matrix");
+    }
+    impl_->fixed = fixed_;
+    Eigen::SparseMatrix<double> pinned = impl_->G;
+    pin_fixed(pinned, impl_->fixed);
+    impl_->metric_solver.compute(pinned, "SparseMetric::update");
+    impl_->ready = true;
+}
+
+VertexField SparseMetric::gradient(const VertexField& dEdX) const {
+    if (!impl_->ready) {
+        throw InvalidInput("SparseMetric::gradient: update() was not called");
+    }
+    detail::require_rows(dEdX, impl_->G.rows(), "SparseMetric::gradient");
+    return impl_->metric_solver.solve(zero_fixed_rows(dEdX, impl_->fixed));
+}
+
+VertexField SparseMetric::apply(const VertexField& U) const {
+    if (!impl_->ready) {
+        throw InvalidInput("SparseMetric::apply: update() was not called");
+    }
+    detail::require_rows(U, impl_->G.rows(), "SparseMetric::apply");
+    return impl_->G * U;
+}
+
+VertexField SparseMetric::shifted_gradient(const Eigen::SparseMatrix<double>& A, double dt,
+                                           const VertexField& R) {
+    if (!impl_->ready) {
+        throw InvalidInput("SparseMetric::shifted_gradient: update() was not called");
+    }
+    detail::require_rows(R, impl_->G.rows(), "SparseMetric::shifted_gradient");
+    if (A.rows() != impl_->G.rows() || A.cols() != impl_->G.cols()) {
+        throw InvalidInput("SparseMetric::shifted_gradient: A must be #V×#V");
+    }
+    if (!(dt >= 0) || !std::isfinite(dt)) {
+        throw InvalidInput("SparseMetric::shifted_gradient: dt must be non-negative and finite");
+    }
+    Eigen::SparseMatrix<double> shifted = impl_->G + dt * A;
+    shifted.makeCompressed();
+    pin_fixed(shifted, impl_->fixed);
+    impl_->shifted_solver.compute(shifted, "SparseMetric::shifted_gradient");
+    return impl_->shifted_solver.solve(zero_fixed_rows(R, impl_->fixed));
+}
+
+const Eigen::SparseMatrix<double>& SparseMetric::matrix() const {
+    return impl_->G;
+}
+
+int SparseMetric::symbolic_analyses() const {
+    return impl_->metric_solver.analyses() + impl_->shifted_solver.analyses();
+}
+
+}  // namespace genflow

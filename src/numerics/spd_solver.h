@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// The one sparse SPD solver facade of genflow: CHOLMOD when the build found it, else Eigen's
+// SimplicialLDLT. The symbolic analysis is kept while the sparsity pattern stays the same, so a
+// flow pays for it once and only refactors numerically at each step.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <memory>
+
+namespace genflow::detail {
+
+class SpdSolver {
+public:
+    SpdSolver();
+    ~SpdSolver();
+    SpdSolver(SpdSolver&&) noexcept;
+    SpdSolver& operator=(SpdSolver&&) noexcept;
+
+    /// Factors A (symmetric positive definite, both triangles stored). Reuses the previous
+    /// symbolic analysis when A has the same size and non-zero pattern.
+    /// \throws SolverError naming `caller` if A is not numerically positive definite or holds a
+    ///         non-finite entry.
+    void compute(const Eigen::SparseMatrix<double>& A, const char* caller);
+
+    /// A⁻¹·B for the last factored A, column by column.
+    [[nodiscard]] Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+
+    /// How many symbolic analyses were run (for tests of the reuse).
+    [[nodiscard]] int analyses() const { return analyses_; }
+
+    /// "CHOLMOD" or "Eigen SimplicialLDLT".
+    [[nodiscard]] static const char* backend();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    int analyses_ = 0;
+};
+
+}  // namespace genflow::detail
