@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "genflow 0.1.0");
     app.require_subcommand(1);
     register_info_command(app);
+    register_smooth_command(app);
     register_demo_command(app);
     try {
         app.parse(argc, argv);

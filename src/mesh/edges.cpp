@@ -7,7 +7,10 @@
 
 namespace genflow {
 
-Eigen::MatrixX2i unique_edges(const Eigen::MatrixX3i& F) {
+namespace {
+
+// Every face's edges as (min, max) pairs, sorted, each as often as faces use it.
+std::vector<std::pair<int, int>> sorted_face_edges(const Eigen::MatrixX3i& F) {
     std::vector<std::pair<int, int>> edges;
     edges.reserve(static_cast<std::size_t>(3 * F.rows()));
     for (Eigen::Index f = 0; f < F.rows(); ++f) {
@@ -20,6 +23,30 @@ Eigen::MatrixX2i unique_edges(const Eigen::MatrixX3i& F) {
         }
     }
     std::sort(edges.begin(), edges.end());
+    return edges;
+}
+
+}  // namespace
+
+std::vector<bool> boundary_vertices(const Eigen::MatrixX3i& F, Eigen::Index num_vertices) {
+    const auto edges = sorted_face_edges(F);
+    std::vector<bool> boundary(static_cast<std::size_t>(num_vertices), false);
+    for (std::size_t i = 0; i < edges.size();) {
+        std::size_t j = i;
+        while (j < edges.size() && edges[j] == edges[i]) {
+            ++j;
+        }
+        if (j - i == 1) {
+            boundary[static_cast<std::size_t>(edges[i].first)] = true;
+            boundary[static_cast<std::size_t>(edges[i].second)] = true;
+        }
+        i = j;
+    }
+    return boundary;
+}
+
+Eigen::MatrixX2i unique_edges(const Eigen::MatrixX3i& F) {
+    auto edges = sorted_face_edges(F);
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     Eigen::MatrixX2i E(static_cast<Eigen::Index>(edges.size()), 2);
     for (std::size_t e = 0; e < edges.size(); ++e) {

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "genflow/operators/mass_matrix.h"
 
-#include <limits>
 #include <vector>
 
 #include "operators/triangle.h"
@@ -24,12 +23,11 @@ Eigen::Vector3d voronoi_corner_areas(const detail::Triangle& t) {
     }
     // Non-obtuse: (|x_i−x_j|² cot γ_k + |x_i−x_k|² cot γ_j)/8, with unclamped cotangents
     // (they are bounded here: all angles lie in (0°, 90°]).
-    const double max_cot = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 3; ++i) {
         const int j = (i + 1) % 3;
         const int k = (i + 2) % 3;
-        corner_area[i] = ((t.x[i] - t.x[j]).squaredNorm() * t.cot(k, max_cot) +
-                          (t.x[i] - t.x[k]).squaredNorm() * t.cot(j, max_cot)) /
+        corner_area[i] = ((t.x[i] - t.x[j]).squaredNorm() * t.cot(k) +
+                          (t.x[i] - t.x[k]).squaredNorm() * t.cot(j)) /
                          8;
     }
     return corner_area;
@@ -70,13 +68,12 @@ Eigen::SparseMatrix<double> mass_matrix(const TriangleMesh& mesh, MassType type)
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(static_cast<std::size_t>(9 * mesh.F.rows()));
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        // Zero-area faces add explicit zeros, so the pattern depends only on the connectivity.
         const detail::Triangle t(mesh, f);
-        if (t.degenerate()) {
-            continue;
-        }
+        const double area = t.degenerate() ? 0.0 : t.area();
         for (int a = 0; a < 3; ++a) {
             for (int b = 0; b < 3; ++b) {
-                triplets.emplace_back(mesh.F(f, a), mesh.F(f, b), t.area() / (a == b ? 6 : 12));
+                triplets.emplace_back(mesh.F(f, a), mesh.F(f, b), area / (a == b ? 6 : 12));
             }
         }
     }

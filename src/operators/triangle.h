@@ -62,11 +62,23 @@ struct Triangle {
         return x[(k + 2) % 3] - x[(k + 1) % 3];
     }
 
-    /// cot of the angle at corner k, clamped to ±max_cot. Only for non-degenerate faces.
-    [[nodiscard]] double cot(int k, double max_cot) const {
+    /// cot of the angle at corner k (unclamped). Only for non-degenerate faces.
+    [[nodiscard]] double cot(int k) const {
         const Eigen::Vector3d u = x[(k + 1) % 3] - x[k];
         const Eigen::Vector3d v = x[(k + 2) % 3] - x[k];
-        return std::clamp(u.dot(v) / double_area, -max_cot, max_cot);
+        return u.dot(v) / double_area;
+    }
+
+    /// The three cotangents, scaled together so that none exceeds max_cot in magnitude. Scaling
+    /// all three by one factor keeps the face's stiffness matrix positive semi-definite
+    /// (cot·cot sums stay ≥ 0); clamping each one alone would not, for caps near 180°.
+    [[nodiscard]] Eigen::Vector3d bounded_cots(double max_cot) const {
+        Eigen::Vector3d c(cot(0), cot(1), cot(2));
+        const double largest = c.cwiseAbs().maxCoeff();
+        if (largest > max_cot) {
+            c *= max_cot / largest;
+        }
+        return c;
     }
 };
 

@@ -8,9 +8,12 @@
 #include "genflow/energies/surface_area_energy.h"
 #include "genflow/exceptions.h"
 #include "genflow/flows/explicit_euler.h"
+#include "genflow/flows/implicit_euler.h"
+#include "genflow/mesh/edges.h"
 #include "genflow/mesh/validate.h"
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
+#include "genflow/metrics/volume_controlled_metric.h"
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mass_matrix.h"
 #include "genflow/operators/mesh_size.h"
@@ -36,31 +39,8 @@ double prepare(const TriangleMesh& mesh, const SmoothingOptions& options, const 
     return h;
 }
 
-std::vector<bool> boundary_mask(const TriangleMesh& mesh) {
-    // An edge used by exactly one face is a boundary edge; its vertices are boundary vertices.
-    std::vector<std::pair<int, int>> edges;
-    edges.reserve(static_cast<std::size_t>(3 * mesh.F.rows()));
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-        for (int k = 0; k < 3; ++k) {
-            const int a = mesh.F(f, k);
-            const int b = mesh.F(f, (k + 1) % 3);
-            edges.emplace_back(std::min(a, b), std::max(a, b));
-        }
-    }
-    std::sort(edges.begin(), edges.end());
-    std::vector<bool> fixed(static_cast<std::size_t>(mesh.V.rows()), false);
-    for (std::size_t i = 0; i < edges.size();) {
-        std::size_t j = i;
-        while (j < edges.size() && edges[j] == edges[i]) {
-            ++j;
-        }
-        if (j - i == 1) {
-            fixed[static_cast<std::size_t>(edges[i].first)] = true;
-            fixed[static_cast<std::size_t>(edges[i].second)] = true;
-        }
-        i = j;
-    }
-    return fixed;
+double metric_lambda(const SmoothingOptions& options, double h, double time_step) {
+    return options.lambda ? *options.lambda * h * h : time_step;
 }
 
 FlowOptions flow_options(const SmoothingOptions& options, double time_step) {
@@ -71,12 +51,17 @@ FlowOptions flow_options(const SmoothingOptions& options, double time_step) {
     return flow;
 }
 
+enum class Integrator { Explicit, Implicit };
+
 FlowResult area_flow(const TriangleMesh& mesh, const SmoothingOptions& options, Metric& metric,
-                     double time_step) {
+                     double time_step, Integrator integrator = Integrator::Explicit) {
     if (options.fix_boundary) {
-        metric.set_fixed_vertices(boundary_mask(mesh));
+        metric.set_fixed_vertices(boundary_vertices(mesh.F, mesh.V.rows()));
     }
-    return explicit_euler(mesh, SurfaceAreaEnergy{}, metric, flow_options(options, time_step));
+    const FlowOptions flow = flow_options(options, time_step);
+    return integrator == Integrator::Explicit
+               ? explicit_euler(mesh, SurfaceAreaEnergy{}, metric, flow)
+               : implicit_euler(mesh, SurfaceAreaEnergy{}, metric, flow);
 }
 
 }  // namespace
@@ -107,7 +92,7 @@ FlowResult mean_curvature_flow(const TriangleMesh& mesh, const SmoothingOptions&
 FlowResult implicit_fairing(const TriangleMesh& mesh, const SmoothingOptions& options) {
     const double h = prepare(mesh, options, "implicit_fairing");
     const double time_step = options.time_step * h * h;
-    H1Metric metric({.lambda = time_step});
+    H1Metric metric({.lambda = metric_lambda(options, h, time_step)});
     return area_flow(mesh, options, metric, time_step);
 }
 
@@ -117,8 +102,15 @@ FlowResult higher_order_fairing(const TriangleMesh& mesh, const SmoothingOptions
         throw InvalidInput("higher_order_fairing: mu must be non-negative and finite");
     }
     const double time_step = options.time_step * h * h;
-    H2Metric metric({.lambda = time_step, .mu = options.mu * h * h * h * h});
+    H2Metric metric(
+        {.lambda = metric_lambda(options, h, time_step), .mu = options.mu * h * h * h * h});
     return area_flow(mesh, options, metric, time_step);
+}
+
+FlowResult volume_controlled_fairing(const TriangleMesh& mesh, const SmoothingOptions& options) {
+    const double h = prepare(mesh, options, "volume_controlled_fairing");
+    VolumeControlledMetric metric({.lambda = options.volume_lambda});
+    return area_flow(mesh, options, metric, options.time_step * h * h, Integrator::Implicit);
 }
 
 }  // namespace genflow

@@ -132,8 +132,11 @@ TEST(Cli, DemoWritesItsMeshAndReportsOnIt) {
     const test::TemporaryDirectory directory;
     const auto result = run_genflow("demo --output-dir " + quoted(directory / "out"));
     ASSERT_EQ(result.exit_code, 0) << result.err;
-    EXPECT_TRUE(std::filesystem::exists(directory / "out" / "torus_noisy.ply"));
-    EXPECT_NE(result.out.find("genus 1"), std::string::npos) << result.out;
+    for (const char* name : {"torus_noisy.ply", "torus_fairing.ply", "torus_volume_fairing.ply"}) {
+        EXPECT_TRUE(std::filesystem::exists(directory / "out" / name)) << name;
+    }
+    EXPECT_NE(result.out.find("torus_volume_fairing.ply (volume)"), std::string::npos)
+        << result.out;
 }
 
 TEST(Cli, DemoIntoAnUnwritablePlaceFailsCleanly) {

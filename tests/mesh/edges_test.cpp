@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "genflow/mesh/primitives.h"
 
 namespace genflow {
@@ -21,6 +23,19 @@ TEST(Edges, AreSortedUniqueAndOrdered) {
     Eigen::MatrixX2i expected(5, 2);
     expected << 0, 1, 0, 2, 1, 2, 1, 3, 2, 3;
     EXPECT_EQ(unique_edges(F), expected);
+}
+
+TEST(Edges, BoundaryVerticesOfAGridAndAClosedMesh) {
+    const TriangleMesh grid = make_grid(4);
+    const std::vector<bool> boundary = boundary_vertices(grid.F, grid.V.rows());
+    for (Eigen::Index i = 0; i < grid.V.rows(); ++i) {
+        const double x = grid.V(i, 0);
+        const double y = grid.V(i, 1);
+        EXPECT_EQ(boundary[static_cast<std::size_t>(i)], x == 0 || x == 1 || y == 0 || y == 1) << i;
+    }
+    const TriangleMesh sphere = make_icosphere(1);
+    const auto none = boundary_vertices(sphere.F, sphere.V.rows());
+    EXPECT_EQ(std::count(none.begin(), none.end(), true), 0);
 }
 
 }  // namespace

@@ -104,6 +104,28 @@ TEST(CotanStiffness, DegenerateFacesGiveFiniteEntries) {
     EXPECT_LE(K.cwiseAbs().maxCoeff(), 2 * CotanOptions{}.max_cotangent);
 }
 
+TEST(CotanStiffness, BoundedCotangentsKeepCapsPositiveSemiDefinite) {
+    // A cap: angles of about 0.001°, 0.001° and 179.998°. Clamping each cotangent on its own
+    // would give cot products summing to −1e6 and an indefinite K.
+    TriangleMesh mesh;
+    mesh.V.resize(3, 3);
+    mesh.V << 0, 0, 0, 1, 0, 0, 0.5, 1e-5, 0;
+    mesh.F.resize(1, 3);
+    mesh.F << 0, 1, 2;
+    const Eigen::MatrixXd K = cotan_stiffness(mesh);
+    const Eigen::VectorXd eigenvalues =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(K).eigenvalues();
+    EXPECT_GT(eigenvalues.minCoeff(), -1e-9 * eigenvalues.maxCoeff());
+    EXPECT_LE(K.cwiseAbs().maxCoeff(), CotanOptions{}.max_cotangent);
+}
+
+TEST(CotanStiffness, SparsityPatternDependsOnlyOnConnectivity) {
+    const TriangleMesh mesh = test::noisy_icosphere(1);
+    TriangleMesh flattened = mesh;
+    flattened.V.row(mesh.F(0, 2)) = 0.5 * (mesh.V.row(mesh.F(0, 0)) + mesh.V.row(mesh.F(0, 1)));
+    EXPECT_EQ(cotan_stiffness(flattened).nonZeros(), cotan_stiffness(mesh).nonZeros());
+}
+
 TEST(CotanStiffness, RejectsOutOfRangeIndices) {
     TriangleMesh mesh = make_icosphere(0);
     mesh.F(3, 1) = 12;

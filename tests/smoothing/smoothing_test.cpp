@@ -22,7 +22,8 @@ double sphere_noise(const TriangleMesh& mesh) {
 TEST(Smoothing, EveryMethodRemovesNoiseFromASphere) {
     const TriangleMesh noisy = test::noisy_icosphere(3, 0.2, 5);
     const double before = sphere_noise(noisy);
-    for (const auto& method : {mean_curvature_flow, implicit_fairing, higher_order_fairing}) {
+    for (const auto& method :
+         {mean_curvature_flow, implicit_fairing, higher_order_fairing, volume_controlled_fairing}) {
         const FlowResult result = method(noisy, {.time_step = 1.0, .steps = 5});
         ASSERT_TRUE(result.ok()) << result.message;
         EXPECT_LT(sphere_noise(result.mesh), 0.5 * before);
@@ -65,7 +66,8 @@ TEST(Smoothing, WorksOnOpenMultiComponentMeshesWithSlivers) {
     mesh.F.conservativeResize(mesh.F.rows() + second.F.rows(), 3);
     mesh.F.bottomRows(second.F.rows()) = second.F.array() + static_cast<int>(n);
     mesh.V(10, 1) = mesh.V(11, 1) + 1e-9;  // a needle
-    for (const auto& method : {mean_curvature_flow, implicit_fairing, higher_order_fairing}) {
+    for (const auto& method :
+         {mean_curvature_flow, implicit_fairing, higher_order_fairing, volume_controlled_fairing}) {
         for (const bool fix : {false, true}) {
             const FlowResult result =
                 method(mesh, {.time_step = 2.0, .steps = 3, .fix_boundary = fix});

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace genflow {
 
@@ -9,5 +10,10 @@ namespace genflow {
 /// Indices are taken as they are (no range check); faces with a repeated index contribute
 /// their non-degenerate edges only.
 [[nodiscard]] Eigen::MatrixX2i unique_edges(const Eigen::MatrixX3i& F);
+
+/// One flag per vertex (size `num_vertices`): true for the vertices of boundary edges, the
+/// edges used by exactly one face. Indices must lie in [0, num_vertices).
+[[nodiscard]] std::vector<bool> boundary_vertices(const Eigen::MatrixX3i& F,
+                                                  Eigen::Index num_vertices);
 
 }  // namespace genflow

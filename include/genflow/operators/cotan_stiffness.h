@@ -9,10 +9,11 @@ namespace genflow {
 
 /// Options of `cotan_stiffness()`.
 struct CotanOptions {
-    /// Cotangents are clamped to [−max_cotangent, max_cotangent]. The default (angles below
-    /// about 0.06° or above 179.94°) only touches needle and cap triangles, whose exact
-    /// stiffness would make the matrices of the flows needlessly ill-conditioned; well-shaped
-    /// meshes are assembled exactly.
+    /// Bound on |cot| of any angle. A face whose largest |cot| exceeds it has all three of its
+    /// cotangents scaled down by the same factor, which keeps K positive semi-definite (clamping
+    /// each one alone would not, for caps). The default only touches needles and caps (angles
+    /// below about 0.06° or above 179.94°), whose exact stiffness would make the matrices of
+    /// the flows needlessly ill-conditioned; well-shaped meshes are assembled exactly.
     double max_cotangent = 1e3;
 };
 
@@ -29,8 +30,9 @@ struct CotanOptions {
 /// gradient is ∂A/∂X = K X, and the H1 metric is G = M + λK.
 ///
 /// \note Works on any triangle mesh: boundaries, several components, non-manifold edges.
-///       Zero-area faces contribute nothing; cotangents are clamped (see CotanOptions), so the
-///       result is always finite.
+///       Zero-area faces contribute explicit zeros (the sparsity pattern depends only on F, so
+///       factorizations can be reused); cotangents are bounded (see CotanOptions), so the result
+///       is always finite and PSD.
 /// \throws InvalidInput if F indexes outside V or V holds a non-finite coordinate.
 [[nodiscard]] Eigen::SparseMatrix<double> cotan_stiffness(const TriangleMesh& mesh,
                                                           const CotanOptions& options = {});

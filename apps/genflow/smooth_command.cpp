@@ -1,0 +1,181 @@
+// SPDX-License-Identifier: MIT
+// genflow smooth IN OUT --method ...: the smoothing flows of genflow/smoothing/smoothing.h.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "commands.h"
+#include "genflow/exceptions.h"
+#include "genflow/io/mesh_format.h"
+#include "genflow/io/write_mesh.h"
+#include "genflow/operators/area.h"
+#include "genflow/operators/volume.h"
+#include "genflow/smoothing/smoothing.h"
+#include "mesh_summary.h"
+#include "progress_bar.h"
+
+namespace genflow::cli {
+
+namespace {
+
+using SmoothingMethod = FlowResult (*)(const TriangleMesh&, const SmoothingOptions&);
+
+const std::map<std::string, SmoothingMethod>& methods() {
+    static const std::map<std::string, SmoothingMethod> table = {
+        {"mcf", &mean_curvature_flow},
+        {"fairing", &implicit_fairing},
+        {"fairing2", &higher_order_fairing},
+        {"volume-fairing", &volume_controlled_fairing},
+    };
+    return table;
+}
+
+struct SmoothCommandOptions {
+    std::string input;
+    std::string output;
+    std::string method = "volume-fairing";
+    SmoothingOptions smoothing;
+    double lambda = 0;  // 0: unset (λ = dt)
+    bool json = false;
+    std::string frames;
+    int frame_every = 1;
+};
+
+std::string frame_name(int step) {
+    std::ostringstream name;
+    name << "frame_" << std::setw(5) << std::setfill('0') << step << ".ply";
+    return name.str();
+}
+
+void run_smooth(SmoothCommandOptions options) {
+    // Refuse an unwritable format before spending time on the flow.
+    const auto format = mesh_format_from_extension(options.output);
+    if (!format || *format == MeshFormat::Stl) {
+        throw IoError(options.output + ": cannot write this format (expected .obj, .ply or .off)");
+    }
+    const LoadedMesh loaded = load_mesh(options.input);
+    if (!options.json) {
+        print_warnings(loaded);
+    }
+    const std::filesystem::path frames(options.frames);
+    if (!options.frames.empty()) {
+        std::error_code error;
+        std::filesystem::create_directories(frames, error);
+        if (error) {
+            throw IoError(frames.string() + ": cannot create directory (" + error.message() + ")");
+        }
+        write_mesh(frames / frame_name(0), loaded.mesh, {.ply_precision = PlyPrecision::Float});
+    }
+    if (options.lambda > 0) {
+        options.smoothing.lambda = options.lambda;
+    }
+    ProgressBar bar("smooth", !options.json);
+    options.smoothing.progress = [&](const FlowProgress& progress) {
+        bar.update(progress.step, progress.max_steps, "E " + std::to_string(progress.energy));
+        if (!options.frames.empty() &&
+            (progress.step % options.frame_every == 0 || progress.step == progress.max_steps)) {
+            write_mesh(frames / frame_name(progress.step), *progress.mesh,
+                       {.ply_precision = PlyPrecision::Float});
+        }
+        return true;
+    };
+    const FlowResult result = methods().at(options.method)(loaded.mesh, options.smoothing);
+    bar.finish();
+    if (!result.ok()) {
+        throw SolverError("smoothing failed after " + std::to_string(result.steps) + " steps (" +
+                          to_string(result.status) + "): " + result.message);
+    }
+    write_mesh(options.output, result.mesh);
+
+    const double area_before = surface_area(loaded.mesh);
+    const double area_after = surface_area(result.mesh);
+    const double volume_before = enclosed_volume(loaded.mesh);
+    const double volume_after = enclosed_volume(result.mesh);
+    const double volume_change =
+        100 * (std::abs(volume_after) - std::abs(volume_before)) / std::abs(volume_before);
+    if (options.json) {
+        const nlohmann::json summary = {
+            {"input", options.input},
+            {"output", options.output},
+            {"method", options.method},
+            {"status", to_string(result.status)},
+            {"steps", result.steps},
+            {"seconds", result.seconds},
+            {"area_before", area_before},
+            {"area_after", area_after},
+            {"volume_before", volume_before},
+            {"volume_after", volume_after},
+            {"volume_change_percent", volume_change},
+            {"closed", loaded.report.closed()},
+            {"energy", result.energy},
+        };
+        std::cout << summary.dump(2) << '\n';
+        return;
+    }
+    std::printf(
+        "smooth: %s, %d steps (%s) in %.2f s; area %.6g -> %.6g; volume %.6g -> %.6g "
+        "(%+.3f%%%s); wrote %s\n",
+        options.method.c_str(), result.steps, to_string(result.status), result.seconds, area_before,
+        area_after, volume_before, volume_after, volume_change,
+        loaded.report.closed() ? "" : ", open surface", options.output.c_str());
+}
+
+}  // namespace
+
+void register_smooth_command(CLI::App& app) {
+    auto options = std::make_shared<SmoothCommandOptions>();
+    auto* command = app.add_subcommand(
+        "smooth",
+        "Smooth a mesh by a gradient flow of its area (mean-curvature flow, implicit "
+        "fairing = H1 flow, H2 fairing, volume-controlled fairing) and write the result");
+    command->add_option("input", options->input, "Input mesh (.obj, .ply, .off, .stl)")->required();
+    command->add_option("output", options->output, "Output mesh (.obj, .ply, .off)")->required();
+    std::vector<std::string> names;
+    for (const auto& [name, method] : methods()) {
+        names.push_back(name);
+    }
+    command
+        ->add_option("--method", options->method,
+                     "mcf: explicit L2 flow of the area; fairing: H1 flow (implicit fairing); "
+                     "fairing2: H2 flow; volume-fairing: implicit fairing in the "
+                     "volume-controlled metric (does not shrink)")
+        ->check(CLI::IsMember(names))
+        ->capture_default_str();
+    command
+        ->add_option("--dt", options->smoothing.time_step,
+                     "Time step in units of h² (h = mean edge length)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    command->add_option("--steps", options->smoothing.steps, "Number of steps")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    command
+        ->add_option("--lambda", options->lambda,
+                     "fairing/fairing2: the Sobolev metric's λ in units of h² (default: = dt)")
+        ->check(CLI::PositiveNumber);
+    command->add_option("--mu", options->smoothing.mu, "fairing2: weight of Δ² in units of h⁴")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    command
+        ->add_option(
+            "--volume-lambda", options->smoothing.volume_lambda,
+            "volume-fairing: volume penalty in (0, 1]; volume loss ≈ this × that of fairing")
+        ->check(CLI::Range(1e-12, 1.0))
+        ->capture_default_str();
+    command->add_flag("--fix-boundary", options->smoothing.fix_boundary,
+                      "Keep boundary vertices where they are");
+    command->add_flag("--json", options->json, "Print a JSON summary instead of text");
+    command->add_option("--frames", options->frames,
+                        "Write the input and every k-th step to DIR/frame_NNNNN.ply (float PLY)");
+    command->add_option("--frame-every", options->frame_every, "k for --frames")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    command->callback([options] { run_smooth(*options); });
+}
+
+}  // namespace genflow::cli

@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: MIT
+// Time per implicit-fairing step on the 48K-vertex horse ($GENFLOW_DATA/smoothing/horse_noisy.ply,
+// or a generated 50K-vertex torus without the data): the first step (symbolic analysis +
+// factorization + solve) and later steps separately, through the library (whichever backend it
+// was built with) and with CHOLMOD and Eigen's SimplicialLDLT side by side.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/SparseCholesky>
+#include <cstdlib>
+#include <filesystem>
+
+#ifdef GENFLOW_BENCH_HAS_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+#include "genflow/energies/surface_area_energy.h"
+#include "genflow/io/read_mesh.h"
+#include "genflow/mesh/primitives.h"
+#include "genflow/metrics/sobolev_metric.h"
+#include "genflow/metrics/volume_controlled_metric.h"
+#include "genflow/operators/cotan_stiffness.h"
+#include "genflow/operators/mass_matrix.h"
+#include "genflow/operators/mesh_size.h"
+
+namespace {
+
+const genflow::TriangleMesh& horse() {
+    static const genflow::TriangleMesh mesh = [] {
+        const char* data = std::getenv("GENFLOW_DATA");
+        const std::filesystem::path path =
+            std::filesystem::path(data != nullptr ? data : "../shared/data") / "smoothing" /
+            "horse_noisy.ply";
+        if (std::filesystem::exists(path)) {
+            return genflow::read_mesh(path);
+        }
+        const genflow::TriangleMesh torus = genflow::make_torus(250, 200);
+        return genflow::add_noise(torus, 0.3 * genflow::mean_edge_length(torus), 1);
+    }();
+    return mesh;
+}
+
+double dt() {
+    const double h = genflow::mean_edge_length(horse());
+    return 0.5 * h * h;
+}
+
+// One implicit-fairing step through the library: update (assemble + factor) and gradient.
+void BM_FairingStepFirst(benchmark::State& state) {
+    const genflow::SurfaceAreaEnergy area;
+    for (auto _ : state) {
+        genflow::H1Metric metric({.lambda = dt()});  // fresh: pays the symbolic analysis
+        metric.update(horse());
+        benchmark::DoNotOptimize(metric.gradient(area.differential(horse())));
+    }
+    state.counters["vertices"] = static_cast<double>(horse().V.rows());
+}
+
+void BM_FairingStepLater(benchmark::State& state) {
+    const genflow::SurfaceAreaEnergy area;
+    genflow::H1Metric metric({.lambda = dt()});
+    metric.update(horse());
+    for (auto _ : state) {
+        metric.update(horse());  // same pattern: numeric factorization only
+        benchmark::DoNotOptimize(metric.gradient(area.differential(horse())));
+    }
+}
+
+void BM_FairingAssembleOnly(benchmark::State& state) {
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(genflow::mass_matrix(horse(), genflow::MassType::Barycentric) +
+                                 dt() * genflow::cotan_stiffness(horse()));
+    }
+}
+
+void BM_VolumeFairingStep(benchmark::State& state) {
+    const genflow::SurfaceAreaEnergy area;
+    genflow::VolumeControlledMetric metric({.lambda = 0.05});
+    int iterations = 0;
+    for (auto _ : state) {
+        metric.update(horse());
+        const auto linearization = area.linearize(horse());
+        benchmark::DoNotOptimize(
+            metric.shifted_gradient(linearization->A, dt(), area.differential(horse())));
+        iterations = metric.last_iterations();
+    }
+    state.counters["gmres_iterations"] = iterations;
+}
+
+const Eigen::SparseMatrix<double>& fairing_matrix() {
+    static const Eigen::SparseMatrix<double> A = [] {
+        Eigen::SparseMatrix<double> S =
+            genflow::mass_matrix(horse(), genflow::MassType::Barycentric) +
+            dt() * genflow::cotan_stiffness(horse());
+        S.makeCompressed();
+        return S;
+    }();
+    return A;
+}
+
+template <typename Solver>
+void solver_phases(benchmark::State& state) {
+    const auto& A = fairing_matrix();
+    const Eigen::MatrixXd B = horse().V;
+    const int phase = static_cast<int>(state.range(0));  // 0 analyze, 1 factorize, 2 solve
+    Solver solver;
+    solver.analyzePattern(A);
+    solver.factorize(A);
+    for (auto _ : state) {
+        if (phase == 0) {
+            solver.analyzePattern(A);
+        } else if (phase == 1) {
+            solver.factorize(A);
+        } else {
+            for (int c = 0; c < 3; ++c) {
+                Eigen::VectorXd x = solver.solve(Eigen::VectorXd(B.col(c)));
+                benchmark::DoNotOptimize(x.data());
+            }
+        }
+    }
+}
+
+void BM_EigenLDLT(benchmark::State& state) {
+    solver_phases<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(state);
+}
+#ifdef GENFLOW_BENCH_HAS_CHOLMOD
+void BM_Cholmod(benchmark::State& state) {
+    solver_phases<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>>>(state);
+}
+#endif
+
+}  // namespace
+
+BENCHMARK(BM_FairingStepFirst)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FairingStepLater)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FairingAssembleOnly)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VolumeFairingStep)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EigenLDLT)->ArgName("phase")->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+#ifdef GENFLOW_BENCH_HAS_CHOLMOD
+BENCHMARK(BM_Cholmod)->ArgName("phase")->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+#endif
+
+BENCHMARK_MAIN();

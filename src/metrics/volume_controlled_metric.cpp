@@ -1,0 +1,222 @@
+// SPDX-License-Identifier: MIT
+#include "genflow/metrics/volume_controlled_metric.h"
+
+#include <cmath>
+#include <string>
+
+#include "genflow/exceptions.h"
+#include "genflow/operators/normals.h"
+#include "metrics/metric_support.h"
+#include "numerics/krylov.h"
+#include "numerics/spd_solver.h"
+#include "operators/triangle.h"
+
+namespace genflow {
+
+namespace {
+
+// n×3 field ↔ 3n vector (column-major: all x, then all y, then all z).
+Eigen::VectorXd flatten(const VertexField& field) {
+    return Eigen::Map<const Eigen::VectorXd>(field.data(), field.size());
+}
+VertexField unflatten(const Eigen::VectorXd& vector) {
+    return Eigen::Map<const VertexField>(vector.data(), vector.size() / 3, 3);
+}
+
+}  // namespace
+
+struct VolumeControlledMetric::Impl {
+    Eigen::VectorXd masses;                 // D, floored
+    Eigen::MatrixX3d normals;               // N (unit, zero where undefined)
+    Eigen::MatrixX3i faces;                 // the connectivity `adjacency` was built for
+    Eigen::SparseMatrix<double> adjacency;  // A₊: one-ring with self-loops, ones
+    Eigen::VectorXd ring_sizes;             // |N⁺(j)|
+    Eigen::VectorXd ring_areas;             // a = Ψ m
+    std::vector<bool> fixed;
+    detail::SpdSolver preconditioner;  // D + dt·A
+    int last_iterations = 0;
+    bool ready = false;
+
+    VertexField zero_fixed(VertexField field) const {
+        for (std::size_t i = 0; i < fixed.size(); ++i) {
+            if (fixed[i]) {
+                field.row(static_cast<Eigen::Index>(i)).setZero();
+            }
+        }
+        return field;
+    }
+
+    // P v = N Ψᵀ diag(1/a) Ψ D Nᵀ v.
+    VertexField project(const VertexField& v) const {
+        const Eigen::VectorXd f = (normals.array() * v.array()).rowwise().sum();
+        const Eigen::VectorXd psi_mf =
+            adjacency * (masses.cwiseProduct(f).cwiseQuotient(ring_sizes));
+        const Eigen::VectorXd k =
+            (adjacency * psi_mf.cwiseQuotient(ring_areas)).cwiseQuotient(ring_sizes);
+        return normals.array().colwise() * k.array();
+    }
+
+    // B v = v − (1 − λ) P v on the free vertices (fixed rows stay zero).
+    VertexField apply_b(const VertexField& v, double lambda) const {
+        const VertexField free = zero_fixed(v);
+        return zero_fixed(free - (1 - lambda) * project(free));
+    }
+};
+
+VolumeControlledMetric::VolumeControlledMetric(VolumeControlledOptions options)
+    : options_(options), impl_(std::make_unique<Impl>()) {
+    if (!(options_.lambda > 0) || !(options_.lambda <= 1)) {
+        throw InvalidInput("VolumeControlledMetric: lambda must lie in (0, 1], got " +
+                           std::to_string(options_.lambda));
+    }
+    if (!(options_.tolerance > 0) || !(options_.tolerance < 1)) {
+        throw InvalidInput("VolumeControlledMetric: tolerance must lie in (0, 1)");
+    }
+}
+VolumeControlledMetric::~VolumeControlledMetric() = default;
+VolumeControlledMetric::VolumeControlledMetric(VolumeControlledMetric&&) noexcept = default;
+VolumeControlledMetric& VolumeControlledMetric::operator=(VolumeControlledMetric&&) noexcept =
+    default;
+
+void VolumeControlledMetric::update(const TriangleMesh& mesh) {
+    detail::require_valid_mesh(mesh, "VolumeControlledMetric::update");
+    if (mesh.F.rows() == 0) {
+        throw InvalidInput("VolumeControlledMetric::update: mesh has no faces");
+    }
+    detail::require_mask_size(fixed_, mesh.V.rows(), "VolumeControlledMetric::update");
+    auto& d = *impl_;
+    d.ready = false;
+    const Eigen::Index n = mesh.V.rows();
+    d.masses = detail::floored_lumped_masses(mesh, MassType::Barycentric);
+    d.normals = vertex_normals(mesh);
+    if (d.faces.rows() != mesh.F.rows() || d.faces != mesh.F || d.adjacency.rows() != n) {
+        // Depends on connectivity only: built once per flow.
+        d.faces = mesh.F;
+        std::vector<Eigen::Triplet<double>> triplets;
+        triplets.reserve(static_cast<std::size_t>(6 * mesh.F.rows() + n));
+        for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+            for (int k = 0; k < 3; ++k) {
+                triplets.emplace_back(mesh.F(f, k), mesh.F(f, (k + 1) % 3), 1.0);
+                triplets.emplace_back(mesh.F(f, (k + 1) % 3), mesh.F(f, k), 1.0);
+            }
+        }
+        for (Eigen::Index i = 0; i < n; ++i) {
+            triplets.emplace_back(i, i, 1.0);
+        }
+        d.adjacency.resize(n, n);
+        d.adjacency.setFromTriplets(triplets.begin(), triplets.end(),
+                                    [](double, double) { return 1.0; });
+        d.ring_sizes = d.adjacency * Eigen::VectorXd::Ones(n);
+    }
+    d.ring_areas = d.adjacency * d.masses.cwiseQuotient(d.ring_sizes);
+    d.fixed = fixed_;
+    d.ready = true;
+}
+
+VertexField VolumeControlledMetric::gradient(const VertexField& dEdX) const {
+    if (!impl_->ready) {
+        throw InvalidInput("VolumeControlledMetric::gradient: update() was not called");
+    }
+    detail::require_rows(dEdX, impl_->masses.size(), "VolumeControlledMetric::gradient");
+    const VertexField l2 = dEdX.array().colwise() / impl_->masses.array();
+    return impl_->apply_b(l2, options_.lambda);
+}
+
+VertexField VolumeControlledMetric::apply(const VertexField& U) const {
+    if (!impl_->ready) {
+        throw InvalidInput("VolumeControlledMetric::apply: update() was not called");
+    }
+    detail::require_rows(U, impl_->masses.size(), "VolumeControlledMetric::apply");
+    const auto& d = *impl_;
+    // G U = D B⁻¹ U: solve (D B) y = D U by CG; D B is symmetric positive definite.
+    const auto DB = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
+        const VertexField By = d.apply_b(unflatten(y), options_.lambda);
+        VertexField result = By.array().colwise() * d.masses.array();
+        // Fixed rows: identity, so the operator stays SPD on the whole space.
+        for (std::size_t i = 0; i < d.fixed.size(); ++i) {
+            if (d.fixed[i]) {
+                result.row(static_cast<Eigen::Index>(i)) =
+                    unflatten(y).row(static_cast<Eigen::Index>(i));
+            }
+        }
+        return flatten(result);
+    };
+    const VertexField rhs = d.zero_fixed(U).array().colwise() * d.masses.array();
+    const auto solved =
+        detail::conjugate_gradient(DB, flatten(rhs), flatten(d.zero_fixed(U)), options_.tolerance,
+                                   10 * static_cast<int>(rhs.size()));
+    if (!solved.converged) {
+        throw SolverError("VolumeControlledMetric::apply: CG did not converge (residual " +
+                          std::to_string(solved.relative_residual) + ")");
+    }
+    return d.masses.asDiagonal() * unflatten(solved.x);
+}
+
+VertexField VolumeControlledMetric::shifted_gradient(const Eigen::SparseMatrix<double>& A,
+                                                     double dt, const VertexField& R) {
+    if (!impl_->ready) {
+        throw InvalidInput("VolumeControlledMetric::shifted_gradient: update() was not called");
+    }
+    auto& d = *impl_;
+    const Eigen::Index n = d.masses.size();
+    detail::require_rows(R, n, "VolumeControlledMetric::shifted_gradient");
+    if (A.rows() != n || A.cols() != n || !(dt >= 0) || !std::isfinite(dt)) {
+        throw InvalidInput(
+            "VolumeControlledMetric::shifted_gradient: A must be #V×#V and dt finite, >= 0");
+    }
+    // (D B⁻¹ + dt A) y = R with y = B z  ⇔  (D + dt A B) z = R: solve for z, return B z.
+    Eigen::SparseMatrix<double> fairing = dt * A;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        fairing.coeffRef(i, i) += d.masses[i];
+    }
+    for (Eigen::Index col = 0; col < fairing.outerSize(); ++col) {  // pin fixed vertices
+        for (Eigen::SparseMatrix<double>::InnerIterator it(fairing, col); it; ++it) {
+            if (!d.fixed.empty() && (d.fixed[static_cast<std::size_t>(it.row())] ||
+                                     d.fixed[static_cast<std::size_t>(it.col())])) {
+                it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+            }
+        }
+    }
+    fairing.makeCompressed();
+    d.preconditioner.compute(fairing, "VolumeControlledMetric::shifted_gradient");
+
+    const auto system = [&](const Eigen::VectorXd& z) -> Eigen::VectorXd {
+        const VertexField Z = unflatten(z);
+        VertexField result = Z.array().colwise() * d.masses.array();
+        result += dt * (A * d.apply_b(Z, options_.lambda));
+        for (std::size_t i = 0; i < d.fixed.size(); ++i) {
+            if (d.fixed[i]) {
+                result.row(static_cast<Eigen::Index>(i)) = Z.row(static_cast<Eigen::Index>(i));
+            }
+        }
+        return flatten(result);
+    };
+    const auto precondition = [&](const Eigen::VectorXd& r) -> Eigen::VectorXd {
+        return flatten(d.preconditioner.solve(unflatten(r)));
+    };
+    const VertexField rhs = d.zero_fixed(R);
+    const Eigen::VectorXd start = precondition(flatten(rhs));
+    const auto solved =
+        detail::gmres(system, precondition, flatten(rhs), start, options_.tolerance, 50, 1000);
+    d.last_iterations = solved.iterations;
+    if (!solved.converged) {
+        throw SolverError("VolumeControlledMetric::shifted_gradient: GMRES did not converge in " +
+                          std::to_string(solved.iterations) + " iterations (residual " +
+                          std::to_string(solved.relative_residual) + ")");
+    }
+    return d.apply_b(unflatten(solved.x), options_.lambda);
+}
+
+VertexField VolumeControlledMetric::volume_changing_part(const VertexField& v) const {
+    if (!impl_->ready) {
+        throw InvalidInput("VolumeControlledMetric::volume_changing_part: update() was not called");
+    }
+    detail::require_rows(v, impl_->masses.size(), "VolumeControlledMetric::volume_changing_part");
+    return impl_->project(v);
+}
+
+int VolumeControlledMetric::last_iterations() const {
+    return impl_->last_iterations;
+}
+
+}  // namespace genflow

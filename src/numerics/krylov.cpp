@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: MIT
+#include "numerics/krylov.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <vector>
+
+namespace genflow::detail {
+
+KrylovResult conjugate_gradient(const LinearOperator& A, const Eigen::VectorXd& b,
+                                const Eigen::VectorXd& x0, double tolerance, int max_iterations) {
+    KrylovResult result;
+    result.x = x0;
+    const double b_norm = b.norm();
+    if (b_norm == 0) {
+        result.x.setZero();
+        result.converged = true;
+        return result;
+    }
+    Eigen::VectorXd r = b - A(result.x);
+    Eigen::VectorXd p = r;
+    double rr = r.squaredNorm();
+    while (std::sqrt(rr) > tolerance * b_norm && result.iterations < max_iterations) {
+        const Eigen::VectorXd Ap = A(p);
+        const double pAp = p.dot(Ap);
+        if (!(pAp > 0)) {
+            break;  // not positive definite (or breakdown): report non-convergence
+        }
+        const double alpha = rr / pAp;
+        result.x += alpha * p;
+        r -= alpha * Ap;
+        const double rr_next = r.squaredNorm();
+        p = r + (rr_next / rr) * p;
+        rr = rr_next;
+        ++result.iterations;
+    }
+    result.relative_residual = std::sqrt(rr) / b_norm;
+    result.converged = result.relative_residual <= tolerance;
+    return result;
+}
+
+KrylovResult gmres(const LinearOperator& A, const LinearOperator& P, const Eigen::VectorXd& b,
+                   const Eigen::VectorXd& x0, double tolerance, int restart, int max_iterations) {
+    KrylovResult result;
+    result.x = x0;
+    const double b_norm = b.norm();
+    if (b_norm == 0) {
+        result.x.setZero();
+        result.converged = true;
+        return result;
+    }
+    const Eigen::Index n = b.size();
+    const int m = std::max(1, restart);
+    while (result.iterations < max_iterations) {
+        const Eigen::VectorXd r = b - A(result.x);
+        const double beta = r.norm();
+        result.relative_residual = beta / b_norm;
+        if (result.relative_residual <= tolerance) {
+            result.converged = true;
+            return result;
+        }
+        // Arnoldi on A·P with modified Gram–Schmidt; Givens rotations keep the least-squares
+        // problem triangular so the residual norm is known at every inner step.
+        Eigen::MatrixXd V(n, m + 1);
+        Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m + 1, m);
+        Eigen::VectorXd cs = Eigen::VectorXd::Zero(m);
+        Eigen::VectorXd sn = Eigen::VectorXd::Zero(m);
+        Eigen::VectorXd g = Eigen::VectorXd::Zero(m + 1);
+        V.col(0) = r / beta;
+        g[0] = beta;
+        int k = 0;
+        for (; k < m && result.iterations < max_iterations; ++k) {
+            Eigen::VectorXd w = A(P(V.col(k)));
+            for (int j = 0; j <= k; ++j) {
+                H(j, k) = w.dot(V.col(j));
+                w -= H(j, k) * V.col(j);
+            }
+            H(k + 1, k) = w.norm();
+            if (H(k + 1, k) > 0) {
+                V.col(k + 1) = w / H(k + 1, k);
+            }
+            for (int j = 0; j < k; ++j) {
+                const double t = cs[j] * H(j, k) + sn[j] * H(j + 1, k);
+                H(j + 1, k) = -sn[j] * H(j, k) + cs[j] * H(j + 1, k);
+                H(j, k) = t;
+            }
+            const double denominator = std::hypot(H(k, k), H(k + 1, k));
+            cs[k] = denominator > 0 ? H(k, k) / denominator : 1.0;
+            sn[k] = denominator > 0 ? H(k + 1, k) / denominator : 0.0;
+            H(k, k) = denominator;
+            H(k + 1, k) = 0;
+            g[k + 1] = -sn[k] * g[k];
+            g[k] = cs[k] * g[k];
+            ++result.iterations;
+            if (std::abs(g[k + 1]) <= tolerance * b_norm || denominator == 0) {
+                ++k;
+                break;
+            }
+        }
+        const Eigen::VectorXd y =
+            H.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(g.head(k));
+        result.x += P(V.leftCols(k) * y);
+    }
+    result.relative_residual = (b - A(result.x)).norm() / b_norm;
+    result.converged = result.relative_residual <= tolerance;
+    return result;
+}
+
+}  // namespace genflow::detail

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: MIT
+// genflow smooth end to end, on generated meshes and on the real range scan.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_runner.h"
+#include "genflow/io/read_mesh.h"
+#include "genflow/io/write_mesh.h"
+#include "genflow/mesh/primitives.h"
+#include "genflow/mesh/validate.h"
+#include "support/test_meshes.h"
+
+namespace genflow {
+namespace {
+
+using test::quoted;
+using test::run_genflow;
+
+TEST(SmoothCli, EveryMethodWritesASmootherMeshAndAJsonSummary) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "noisy.ply", test::noisy_icosphere(3, 0.2));
+    for (const char* method : {"mcf", "fairing", "fairing2", "volume-fairing"}) {
+        const auto out = directory / (std::string(method) + ".off");
+        const auto result = run_genflow("smooth " + quoted(directory / "noisy.ply") + " " +
+                                        quoted(out) + " --method " + method + " --steps 3 --json");
+        ASSERT_EQ(result.exit_code, 0) << method << ": " << result.err;
+        const auto json = nlohmann::json::parse(result.out);
+        EXPECT_EQ(json["method"], method);
+        EXPECT_EQ(json["steps"], 3);
+        EXPECT_EQ(json["status"], "max-steps");
+        EXPECT_EQ(json["energy"].size(), 4u);
+        EXPECT_LT(json["area_after"].get<double>(), json["area_before"].get<double>());
+        EXPECT_EQ(read_mesh(out).F.rows(), 1280);
+    }
+}
+
+TEST(SmoothCli, VolumeFairingKeepsTheVolumeThatFairingLoses) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "noisy.ply", test::noisy_torus(60, 24, 0.3));
+    const auto run = [&](const std::string& method) {
+        const auto result = run_genflow("smooth " + quoted(directory / "noisy.ply") + " " +
+                                        quoted(directory / "out.ply") +
+                                        " --json --dt 2 --steps 4 --method " + method);
+        EXPECT_EQ(result.exit_code, 0) << result.err;
+        return nlohmann::json::parse(result.out)["volume_change_percent"].get<double>();
+    };
+    const double plain = run("fairing");
+    const double controlled = run("volume-fairing");
+    EXPECT_LT(plain, -1.0);
+    EXPECT_LT(std::abs(controlled), 0.2 * std::abs(plain));
+}
+
+TEST(SmoothCli, FramesAndTextSummary) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "noisy.obj", test::noisy_icosphere(2, 0.2));
+    const auto result =
+        run_genflow("smooth " + quoted(directory / "noisy.obj") + " " +
+                    quoted(directory / "out.ply") + " --method fairing --steps 4 --frames " +
+                    quoted(directory / "frames") + " --frame-every 2");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.out.find("smooth: fairing, 4 steps"), std::string::npos) << result.out;
+    for (const char* frame : {"frame_00000.ply", "frame_00002.ply", "frame_00004.ply"}) {
+        EXPECT_TRUE(std::filesystem::exists(directory / "frames" / frame)) << frame;
+    }
+    EXPECT_FALSE(std::filesystem::exists(directory / "frames" / "frame_00001.ply"));
+}
+
+TEST(SmoothCli, BadArgumentsAndInputsAreRefusedWithoutOutput) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "in.ply", make_icosphere(2));
+    test::write_bytes(directory / "nan.off", "OFF\n3 1 0\nnan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    const std::vector<std::string> bad = {
+        "smooth " + quoted(directory / "in.ply") + " " + quoted(directory / "out.ply") +
+            " --method nope",
+        "smooth " + quoted(directory / "in.ply") + " " + quoted(directory / "out.ply") + " --dt -1",
+        "smooth " + quoted(directory / "in.ply") + " " + quoted(directory / "out.ply") +
+            " --volume-lambda 2",
+        "smooth " + quoted(directory / "in.ply") + " " + quoted(directory / "out.stl"),
+        "smooth " + quoted(directory / "nan.off") + " " + quoted(directory / "out.ply"),
+        "smooth " + quoted(directory / "missing.ply") + " " + quoted(directory / "out.ply"),
+    };
+    for (const auto& arguments : bad) {
+        const auto result = run_genflow(arguments);
+        EXPECT_EQ(result.exit_code, 2) << arguments << ": " << result.err;
+        EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+        EXPECT_FALSE(std::filesystem::exists(directory / "out.ply"));
+        EXPECT_FALSE(std::filesystem::exists(directory / "out.stl"));
+    }
+}
+
+TEST(SmoothCli, RealRangeScanSmoothsWithoutNanWithAndWithoutFixedBoundary) {
+    const auto data = test::data_directory();
+    if (!data) {
+        GTEST_SKIP() << "no data directory (set GENFLOW_DATA)";
+    }
+    const test::TemporaryDirectory directory;
+    const auto scan = *data / "smoothing" / "bun000_rangescan.ply";
+    const TriangleMesh input = read_mesh(scan);
+    for (const char* method : {"mcf", "fairing", "fairing2", "volume-fairing"}) {
+        for (const char* fix : {"", " --fix-boundary"}) {
+            const auto out = directory / "out.ply";
+            const auto result = run_genflow("smooth " + quoted(scan) + " " + quoted(out) +
+                                            " --steps 2 --method " + method + fix);
+            ASSERT_EQ(result.exit_code, 0) << method << fix << ": " << result.err;
+            const TriangleMesh smoothed = read_mesh(out);
+            EXPECT_EQ(validate(smoothed).non_finite_vertices, 0) << method << fix;
+            EXPECT_EQ(smoothed.F, input.F);
+            if (std::string(fix).empty()) {
+                EXPECT_GT((smoothed.V - input.V).norm(), 0.0) << method;
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace genflow
