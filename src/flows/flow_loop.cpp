@@ -30,18 +30,21 @@ const char* to_string(FlowStatus status) {
 
 namespace detail {
 
-FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, const FlowOptions& options,
+FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, Metric& metric,
+                    const FlowOptions& options,
                     const std::function<VertexField(const TriangleMesh&)>& step,
                     const char* caller) {
-    if (!(options.time_step > 0) || !std::isfinite(options.time_step)) {
+    if (!finite_above(options.time_step, 0)) {
         throw InvalidInput(std::string(caller) + ": time_step must be positive and finite, got " +
                            std::to_string(options.time_step));
     }
-    if (options.max_steps < 0 || !(options.energy_tolerance >= 0) || !(options.max_seconds > 0)) {
+    if (options.max_steps < 0 || !finite_at_least(options.energy_tolerance, 0) ||
+        std::isnan(options.max_seconds) || options.max_seconds <= 0) {
         throw InvalidInput(std::string(caller) +
                            ": need max_steps >= 0, energy_tolerance >= 0 and max_seconds > 0");
     }
     require_valid_mesh(mesh, caller);
+    metric.update(mesh);
     const auto start = std::chrono::steady_clock::now();
     const auto elapsed = [&] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -54,6 +57,9 @@ FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, const FlowOp
     while (result.steps < options.max_steps) {
         TriangleMesh next = result.mesh;
         try {
+            if (result.steps > 0) {
+                metric.update(result.mesh);
+            }
             next.V += step(result.mesh);
         } catch (const SolverError& e) {
             result.status = FlowStatus::SolverFailed;

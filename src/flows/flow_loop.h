@@ -7,11 +7,15 @@
 
 #include "genflow/energies/energy.h"
 #include "genflow/flows/flow.h"
+#include "genflow/metrics/metric.h"
 
 namespace genflow::detail {
 
-/// Runs `step` (which returns the displacement to add to V) until a stopping rule fires.
-FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, const FlowOptions& options,
+/// Runs `step` (which returns the displacement to add to V, with `metric` already updated to
+/// the current positions) until a stopping rule fires. The first `metric.update()` happens
+/// before the loop, so a mesh the metric refuses is an exception, not a status.
+FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, Metric& metric,
+                    const FlowOptions& options,
                     const std::function<VertexField(const TriangleMesh&)>& step,
                     const char* caller);
 

@@ -8,15 +8,9 @@ namespace genflow {
 
 FlowResult implicit_euler(const TriangleMesh& mesh, const Energy& energy, Metric& metric,
                           const FlowOptions& options) {
-    metric.update(mesh);
-    bool first = true;
     return detail::run_flow(
-        mesh, energy, options,
+        mesh, energy, metric, options,
         [&](const TriangleMesh& current) -> VertexField {
-            if (!first) {
-                metric.update(current);
-            }
-            first = false;
             const auto linearization = energy.linearize(current);
             if (!linearization) {
                 throw InvalidInput(

@@ -101,7 +101,11 @@ void split_tokens(std::string_view line, std::vector<std::string_view>& tokens) 
     }
 }
 
-bool parse_double(std::string_view token, double& value) {
+namespace {
+
+// A complete token as a number of type T; a leading '+' is allowed (from_chars refuses it).
+template <typename T>
+bool parse_number(std::string_view token, T& value) {
     if (!token.empty() && token.front() == '+') {
         token.remove_prefix(1);
     }
@@ -113,16 +117,14 @@ bool parse_double(std::string_view token, double& value) {
     return ec == std::errc() && ptr == end;
 }
 
+}  // namespace
+
+bool parse_double(std::string_view token, double& value) {
+    return parse_number(token, value);
+}
+
 bool parse_integer(std::string_view token, std::int64_t& value) {
-    if (!token.empty() && token.front() == '+') {
-        token.remove_prefix(1);
-    }
-    if (token.empty()) {
-        return false;
-    }
-    const auto* end = token.data() + token.size();
-    const auto [ptr, ec] = std::from_chars(token.data(), end, value);
-    return ec == std::errc() && ptr == end;
+    return parse_number(token, value);
 }
 
 bool iequals(std::string_view a, std::string_view b) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "genflow/exceptions.h"
+#include "operators/triangle.h"
 
 namespace genflow {
 
@@ -18,7 +19,7 @@ TriangleMesh make_icosphere(int level, double radius) {
         throw InvalidInput("make_icosphere: level must lie in [0, 9], got " +
                            std::to_string(level));
     }
-    if (!(radius > 0) || !std::isfinite(radius)) {
+    if (!detail::finite_above(radius, 0)) {
         throw InvalidInput("make_icosphere: radius must be positive and finite");
     }
     const double t = std::numbers::phi;
@@ -74,7 +75,8 @@ TriangleMesh make_torus(int rings, int sides, double major_radius, double minor_
     if (rings < 3 || sides < 3) {
         throw InvalidInput("make_torus: rings and sides must be at least 3");
     }
-    if (!(minor_radius > 0) || !(major_radius > minor_radius) || !std::isfinite(major_radius)) {
+    if (!detail::finite_above(minor_radius, 0) ||
+        !detail::finite_above(major_radius, minor_radius)) {
         throw InvalidInput("make_torus: need 0 < minor_radius < major_radius < inf");
     }
     TriangleMesh mesh;
@@ -101,7 +103,7 @@ TriangleMesh make_torus(int rings, int sides, double major_radius, double minor_
 }
 
 TriangleMesh make_grid(int cells, double size) {
-    if (cells < 1 || !(size > 0) || !std::isfinite(size)) {
+    if (cells < 1 || !detail::finite_above(size, 0)) {
         throw InvalidInput("make_grid: need cells >= 1 and a positive finite size");
     }
     const int n = cells + 1;
@@ -125,7 +127,7 @@ TriangleMesh make_grid(int cells, double size) {
 }
 
 TriangleMesh add_noise(TriangleMesh mesh, double sigma, std::uint64_t seed) {
-    if (!(sigma >= 0) || !std::isfinite(sigma)) {
+    if (!detail::finite_at_least(sigma, 0)) {
         throw InvalidInput("add_noise: sigma must be non-negative and finite");
     }
     std::mt19937_64 generator(seed);

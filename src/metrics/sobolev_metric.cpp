@@ -6,11 +6,12 @@
 #include "genflow/exceptions.h"
 #include "genflow/operators/cotan_stiffness.h"
 #include "metrics/metric_support.h"
+#include "operators/triangle.h"
 
 namespace genflow {
 
 H1Metric::H1Metric(SobolevOptions options) : options_(options) {
-    if (!(options_.lambda > 0) || !std::isfinite(options_.lambda)) {
+    if (!detail::finite_above(options_.lambda, 0)) {
         throw InvalidInput("H1Metric: lambda must be positive and finite, got " +
                            std::to_string(options_.lambda));
     }
@@ -22,11 +23,11 @@ Eigen::SparseMatrix<double> H1Metric::assemble(const TriangleMesh& mesh) const {
 }
 
 H2Metric::H2Metric(SobolevOptions options) : options_(options) {
-    if (!(options_.lambda > 0) || !std::isfinite(options_.lambda)) {
+    if (!detail::finite_above(options_.lambda, 0)) {
         throw InvalidInput("H2Metric: lambda must be positive and finite, got " +
                            std::to_string(options_.lambda));
     }
-    if (!(options_.mu >= 0) || !std::isfinite(options_.mu)) {
+    if (!detail::finite_at_least(options_.mu, 0)) {
         throw InvalidInput("H2Metric: mu must be non-negative and finite, got " +
                            std::to_string(options_.mu));
     }

@@ -95,7 +95,7 @@ VertexField SparseMetric::shifted_gradient(const Eigen::SparseMatrix<double>& A,
     if (A.rows() != impl_->G.rows() || A.cols() != impl_->G.cols()) {
         throw InvalidInput("SparseMetric::shifted_gradient: A must be #V×#V");
     }
-    if (!(dt >= 0) || !std::isfinite(dt)) {
+    if (!detail::finite_at_least(dt, 0)) {
         throw InvalidInput("SparseMetric::shifted_gradient: dt must be non-negative and finite");
     }
     Eigen::SparseMatrix<double> shifted = impl_->G + dt * A;

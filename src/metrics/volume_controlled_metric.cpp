@@ -65,11 +65,11 @@ struct VolumeControlledMetric::Impl {
 
 VolumeControlledMetric::VolumeControlledMetric(VolumeControlledOptions options)
     : options_(options), impl_(std::make_unique<Impl>()) {
-    if (!(options_.lambda > 0) || !(options_.lambda <= 1)) {
+    if (!detail::finite_above(options_.lambda, 0) || options_.lambda > 1) {
         throw InvalidInput("VolumeControlledMetric: lambda must lie in (0, 1], got " +
                            std::to_string(options_.lambda));
     }
-    if (!(options_.tolerance > 0) || !(options_.tolerance < 1)) {
+    if (!detail::finite_above(options_.tolerance, 0) || options_.tolerance >= 1) {
         throw InvalidInput("VolumeControlledMetric: tolerance must lie in (0, 1)");
     }
 }
@@ -160,7 +160,7 @@ VertexField VolumeControlledMetric::shifted_gradient(const Eigen::SparseMatrix<d
     auto& d = *impl_;
     const Eigen::Index n = d.masses.size();
     detail::require_rows(R, n, "VolumeControlledMetric::shifted_gradient");
-    if (A.rows() != n || A.cols() != n || !(dt >= 0) || !std::isfinite(dt)) {
+    if (A.rows() != n || A.cols() != n || !detail::finite_at_least(dt, 0)) {
         throw InvalidInput(
             "VolumeControlledMetric::shifted_gradient: A must be #V×#V and dt finite, >= 0");
     }

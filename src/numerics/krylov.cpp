@@ -23,7 +23,7 @@ KrylovResult conjugate_gradient(const LinearOperator& A, const Eigen::VectorXd& 
     while (std::sqrt(rr) > tolerance * b_norm && result.iterations < max_iterations) {
         const Eigen::VectorXd Ap = A(p);
         const double pAp = p.dot(Ap);
-        if (!(pAp > 0)) {
+        if (!std::isfinite(pAp) || pAp <= 0) {
             break;  // not positive definite (or breakdown): report non-convergence
         }
         const double alpha = rr / pAp;

@@ -9,7 +9,7 @@ namespace genflow {
 
 Eigen::SparseMatrix<double> cotan_stiffness(const TriangleMesh& mesh, const CotanOptions& options) {
     detail::require_valid_mesh(mesh, "cotan_stiffness");
-    if (!(options.max_cotangent > 0)) {
+    if (!detail::finite_above(options.max_cotangent, 0)) {
         throw InvalidInput("cotan_stiffness: max_cotangent must be positive");
     }
     std::vector<Eigen::Triplet<double>> triplets;

@@ -13,6 +13,16 @@
 
 namespace genflow::detail {
 
+/// x is finite and x > lo (x >= lo). isfinite is tested first because an ordered comparison
+/// with NaN raises FE_INVALID, which our Debug tests trap: checking a NaN parameter must not
+/// itself be the floating-point error.
+inline bool finite_above(double x, double lo) {
+    return std::isfinite(x) && x > lo;
+}
+inline bool finite_at_least(double x, double lo) {
+    return std::isfinite(x) && x >= lo;
+}
+
 /// True if no coordinate is NaN or infinite. Written with std::isfinite rather than Eigen's
 /// allFinite(), which computes x − x and so raises FE_INVALID on infinities (our Debug tests
 /// trap floating-point exceptions).

@@ -17,6 +17,7 @@
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mass_matrix.h"
 #include "genflow/operators/mesh_size.h"
+#include "operators/triangle.h"
 
 namespace genflow {
 
@@ -28,12 +29,12 @@ double prepare(const TriangleMesh& mesh, const SmoothingOptions& options, const 
     if (!report.ok()) {
         throw InvalidInput(std::string(caller) + ": " + report.first_error());
     }
-    if (!(options.time_step > 0) || !std::isfinite(options.time_step) || options.steps < 0) {
+    if (!detail::finite_above(options.time_step, 0) || options.steps < 0) {
         throw InvalidInput(std::string(caller) +
                            ": need a positive finite time_step and steps >= 0");
     }
     const double h = mean_edge_length(mesh);
-    if (!(h > 0)) {
+    if (!detail::finite_above(h, 0)) {
         throw InvalidInput(std::string(caller) + ": mesh has no edge of positive length");
     }
     return h;
@@ -98,7 +99,7 @@ FlowResult implicit_fairing(const TriangleMesh& mesh, const SmoothingOptions& op
 
 FlowResult higher_order_fairing(const TriangleMesh& mesh, const SmoothingOptions& options) {
     const double h = prepare(mesh, options, "higher_order_fairing");
-    if (!(options.mu >= 0) || !std::isfinite(options.mu)) {
+    if (!detail::finite_at_least(options.mu, 0)) {
         throw InvalidInput("higher_order_fairing: mu must be non-negative and finite");
     }
     const double time_step = options.time_step * h * h;

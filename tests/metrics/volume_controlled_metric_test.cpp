@@ -140,6 +140,27 @@ TEST(VolumeControlledMetric, VolumeLossShrinksWithLambdaAndIgnoresOrientation) {
     EXPECT_LT(test::relative_error(b.mesh.V, a.mesh.V), 1e-8);
 }
 
+TEST(VolumeControlledMetric, GradientStepDecreasesTheAreaAndFixedVerticesStay) {
+    const TriangleMesh mesh = test::jittered_grid(8);
+    TriangleMesh bumpy = add_noise(mesh, 0.02, 6);
+    VolumeControlledMetric metric({.lambda = 0.05});
+    std::vector<bool> fixed(static_cast<std::size_t>(mesh.V.rows()), false);
+    fixed[0] = fixed[40] = true;
+    metric.set_fixed_vertices(fixed);
+    metric.update(bumpy);
+    const SurfaceAreaEnergy area;
+    const VertexField dEdX = area.differential(bumpy);
+    const VertexField g = metric.gradient(dEdX);
+    EXPECT_GT((dEdX.array() * g.array()).sum(), 0);
+    EXPECT_EQ(g.row(0).norm(), 0.0);
+    EXPECT_EQ(g.row(40).norm(), 0.0);
+    const VertexField s = metric.shifted_gradient(cotan_stiffness(bumpy), 0.01, dEdX);
+    EXPECT_EQ(s.row(40).norm(), 0.0);
+    TriangleMesh moved = bumpy;
+    moved.V -= 1e-3 * g / g.norm();
+    EXPECT_LT(area.value(moved), area.value(bumpy));
+}
+
 TEST(VolumeControlledMetric, RejectsBadParameters) {
     EXPECT_THROW(VolumeControlledMetric({.lambda = 0}), InvalidInput);
     EXPECT_THROW(VolumeControlledMetric({.lambda = 1.5}), InvalidInput);

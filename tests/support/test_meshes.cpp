@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <cfenv>
 #include <cstdlib>
 #include <fstream>
 #include <random>
@@ -80,6 +81,20 @@ TemporaryDirectory::TemporaryDirectory() {
 TemporaryDirectory::~TemporaryDirectory() {
     std::error_code ignored;
     std::filesystem::remove_all(path_, ignored);
+}
+
+FloatingPointTrapsOff::FloatingPointTrapsOff() {
+#ifdef __GLIBC__
+    saved_ = fegetexcept();
+    fedisableexcept(FE_ALL_EXCEPT);
+#endif
+}
+
+FloatingPointTrapsOff::~FloatingPointTrapsOff() {
+#ifdef __GLIBC__
+    std::feclearexcept(FE_ALL_EXCEPT);
+    feenableexcept(saved_);
+#endif
 }
 
 void write_bytes(const std::filesystem::path& path, const std::string& bytes) {

@@ -48,6 +48,19 @@ private:
     std::filesystem::path path_;
 };
 
+/// Turns off the floating-point traps of Debug test runs (tests/support/test_main.cpp) for a
+/// scope, for tests that overflow on purpose; restores them, with cleared flags, afterwards.
+class FloatingPointTrapsOff {
+public:
+    FloatingPointTrapsOff();
+    ~FloatingPointTrapsOff();
+    FloatingPointTrapsOff(const FloatingPointTrapsOff&) = delete;
+    FloatingPointTrapsOff& operator=(const FloatingPointTrapsOff&) = delete;
+
+private:
+    int saved_ = 0;
+};
+
 /// Writes `bytes` to `path` as they are (for malformed-file tests).
 void write_bytes(const std::filesystem::path& path, const std::string& bytes);
 

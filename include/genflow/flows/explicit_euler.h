@@ -17,6 +17,7 @@ namespace genflow {
 /// \throws InvalidInput if the mesh is refused by `metric.update()` or the options are invalid
 ///         (dt not positive and finite, max_steps < 0). Breakdowns during the flow are reported
 ///         in the result's status, never thrown.
+/// \throws SolverError  if the metric cannot be factored at the input positions.
 [[nodiscard]] FlowResult explicit_euler(const TriangleMesh& mesh, const Energy& energy,
                                         Metric& metric, const FlowOptions& options);
 

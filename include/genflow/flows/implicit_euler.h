@@ -18,6 +18,7 @@ namespace genflow {
 /// \throws InvalidInput if the energy has no linearization, the mesh is refused by
 ///         `metric.update()`, or the options are invalid. Breakdowns during the flow are reported
 ///         in the result's status, never thrown.
+/// \throws SolverError  if the metric cannot be factored at the input positions.
 [[nodiscard]] FlowResult implicit_euler(const TriangleMesh& mesh, const Energy& energy,
                                         Metric& metric, const FlowOptions& options);
 

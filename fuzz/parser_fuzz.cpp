@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// libFuzzer entry point: any byte string must parse or raise IoError, never crash, hang or
-// allocate without bound.
+// libFuzzer entry point, compiled once per format (GENFLOW_FUZZ_FORMAT is MeshFormat::Ply, ...):
+// any byte string must parse or raise IoError, never crash, hang or allocate without bound.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -12,7 +12,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     try {
         const auto mesh = genflow::parse_mesh(
-            std::string_view(reinterpret_cast<const char*>(data), size), genflow::MeshFormat::Off);
+            std::string_view(reinterpret_cast<const char*>(data), size), GENFLOW_FUZZ_FORMAT);
         (void)genflow::validate(mesh);  // whatever parses must also validate without crashing
     } catch (const genflow::IoError&) {
     }
