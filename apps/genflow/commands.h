@@ -9,5 +9,6 @@ namespace genflow::cli {
 void register_info_command(CLI::App& app);
 void register_demo_command(CLI::App& app);
 void register_smooth_command(CLI::App& app);
+void register_distance_command(CLI::App& app);
 
 }  // namespace genflow::cli

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     register_info_command(app);
     register_smooth_command(app);
+    register_distance_command(app);
     register_demo_command(app);
     try {
         app.parse(argc, argv);

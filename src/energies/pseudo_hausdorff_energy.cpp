@@ -2,6 +2,7 @@
 #include "genflow/energies/pseudo_hausdorff_energy.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -119,7 +120,9 @@ struct Term {
 
 struct Sums {
     Eigen::VectorXd log_sum;               // log f_u (−inf for inactive u)
-    std::vector<std::vector<Term>> terms;  // per u, when truncating
+    std::vector<std::vector<Term>> terms;  // per u, when truncating and within the budget
+    std::vector<double> radius2;           // per u, when truncating: the search radius²
+    std::vector<char> stored;              // per u: are its terms in `terms`?
     std::size_t pairs = 0;
 };
 
@@ -128,6 +131,7 @@ struct Parameters {
     int integer_alpha;  // α when it is an integer in [1, 64], else 0
     double eps2;
     double truncation;
+    std::size_t stored_term_budget;
 };
 
 // f_u = Σ_{w ∈ to} weight_w d_uw^{−α} for every u of `from`, scaled by the nearest term so that
@@ -139,7 +143,10 @@ Sums sum_over(const Side& from, const Side& to, const Parameters& p) {
     const bool truncate = p.truncation > 0;
     if (truncate) {
         sums.terms.resize(static_cast<std::size_t>(count));
+        sums.radius2.assign(static_cast<std::size_t>(count), 0.0);
+        sums.stored.assign(static_cast<std::size_t>(count), 0);
     }
+    std::atomic<std::size_t> stored_terms{0};
     std::size_t pairs = 0;
 #pragma omp parallel reduction(+ : pairs) if (count > kParallelThreshold)
     {
@@ -162,17 +169,25 @@ Sums sum_over(const Side& from, const Side& to, const Parameters& p) {
                     (std::log(to.total_weight) - log_w_nearest - std::log(p.truncation)) / p.alpha);
                 const double radius2 = kappa2 * d_star - p.eps2;
                 to.index->within(x, radius2 * (1 + 1e-12), found);
+                sums.radius2[static_cast<std::size_t>(u)] = radius2 * (1 + 1e-12);
+                const bool store =
+                    stored_terms.fetch_add(found.size()) + found.size() <= p.stored_term_budget;
+                sums.stored[static_cast<std::size_t>(u)] = store ? 1 : 0;
                 double sum = 0;
                 auto& terms = sums.terms[static_cast<std::size_t>(u)];
                 terms.clear();
-                terms.reserve(found.size());
+                if (store) {
+                    terms.reserve(found.size());
+                }
                 for (const auto& [local, dist2] : found) {
                     const std::uint32_t w = to.active[local];
                     const double d = dist2 + p.eps2;
                     const double share =
                         to.weight[w] * ratio_power(d_star / d, p.alpha, p.integer_alpha);
                     sum += share;
-                    terms.push_back({w, d, share});
+                    if (store) {
+                        terms.push_back({w, d, share});
+                    }
                 }
                 for (auto& term : terms) {
                     term.share /= sum;
@@ -199,20 +214,32 @@ Sums sum_over(const Side& from, const Side& to, const Parameters& p) {
     return sums;
 }
 
-// Calls visit(other, d, share) for every term of f_u: the kept ones, or all of them.
+// Calls visit(other, d, share) for every term of f_u: the stored ones, the kept ones found
+// again, or (without truncation) all of them. `found` is the caller's scratch buffer.
 template <typename Visit>
 void for_each_term(const Side& from, const Side& to, const Sums& sums, const Parameters& p,
-                   Eigen::Index u, Visit&& visit) {
-    if (!sums.terms.empty()) {
-        for (const Term& term : sums.terms[static_cast<std::size_t>(u)]) {
+                   Eigen::Index u, std::vector<std::pair<std::uint32_t, double>>& found,
+                   Visit&& visit) {
+    const auto k = static_cast<std::size_t>(u);
+    if (!sums.stored.empty() && sums.stored[k]) {
+        for (const Term& term : sums.terms[k]) {
             visit(term.other, term.d, term.share);
         }
         return;
     }
     const Eigen::Vector3d x = from.points.row(u).transpose();
-    for (const std::uint32_t w : to.active) {
-        const double d = (to.points.row(w).transpose() - x).squaredNorm() + p.eps2;
+    const auto visit_one = [&](std::uint32_t w, double d) {
         visit(w, d, std::exp(to.log_weight[w] - p.alpha * std::log(d) - sums.log_sum[u]));
+    };
+    if (!sums.radius2.empty()) {
+        to.index->within(x, sums.radius2[k], found);
+        for (const auto& [local, dist2] : found) {
+            visit_one(to.active[local], dist2 + p.eps2);
+        }
+        return;
+    }
+    for (const std::uint32_t w : to.active) {
+        visit_one(w, (to.points.row(w).transpose() - x).squaredNorm() + p.eps2);
     }
 }
 
@@ -275,7 +302,7 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
     const Parameters p{
         options.alpha,
         rounded == options.alpha && rounded >= 1 && rounded <= 64 ? static_cast<int>(rounded) : 0,
-        options.epsilon * options.epsilon, options.truncation};
+        options.epsilon * options.epsilon, options.truncation, options.stored_term_budget};
 
     const Sums f = sum_over(source, target, p);  // f_i over the target
     const Sums g = sum_over(target, source, p);  // g_j over the source
@@ -300,25 +327,31 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
     const double base = (1 / (2 * p.alpha) - 1) * log_S;
     const Eigen::Index n = source.points.rows();
     Eigen::MatrixX4d accumulated = Eigen::MatrixX4d::Zero(n, 4);  // Σc, Σc·y
-#pragma omp parallel for schedule(dynamic, 128) if (n > kParallelThreshold)
-    for (Eigen::Index i = 0; i < n; ++i) {
-        if (source.log_weight[i] == kMinusInfinity) {
-            continue;
+#pragma omp parallel if (n > kParallelThreshold)
+    {
+        std::vector<std::pair<std::uint32_t, double>> found;
+#pragma omp for schedule(dynamic, 128)
+        for (Eigen::Index i = 0; i < n; ++i) {
+            if (source.log_weight[i] == kMinusInfinity) {
+                continue;
+            }
+            const double coefficient = std::exp(base + source.log_weight[i] - f.log_sum[i]);
+            Eigen::RowVector4d row = Eigen::RowVector4d::Zero();
+            for_each_term(source, target, f, p, i, found,
+                          [&](std::uint32_t j, double d, double share) {
+                              const double c = coefficient * share / d;
+                              row[0] += c;
+                              row.tail<3>() += c * target.points.row(j);
+                          });
+            accumulated.row(i) += row;
         }
-        const double coefficient = std::exp(base + source.log_weight[i] - f.log_sum[i]);
-        Eigen::RowVector4d row = Eigen::RowVector4d::Zero();
-        for_each_term(source, target, f, p, i, [&](std::uint32_t j, double d, double share) {
-            const double c = coefficient * share / d;
-            row[0] += c;
-            row.tail<3>() += c * target.points.row(j);
-        });
-        accumulated.row(i) += row;
     }
     std::vector<Eigen::MatrixX4d> scattered(static_cast<std::size_t>(thread_count()));
 #pragma omp parallel if (n > kParallelThreshold)
     {
         auto& local = scattered[static_cast<std::size_t>(thread_id())];
         local = Eigen::MatrixX4d::Zero(n, 4);
+        std::vector<std::pair<std::uint32_t, double>> found;
 #pragma omp for schedule(dynamic, 128)
         for (Eigen::Index j = 0; j < target.points.rows(); ++j) {
             if (target.log_weight[j] == kMinusInfinity) {
@@ -326,11 +359,12 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
             }
             const double coefficient = std::exp(base + target.log_weight[j] - g.log_sum[j]);
             const Eigen::RowVector3d y = target.points.row(j);
-            for_each_term(target, source, g, p, j, [&](std::uint32_t i, double d, double share) {
-                const double c = coefficient * share / d;
-                local(i, 0) += c;
-                local.row(i).tail<3>() += c * y;
-            });
+            for_each_term(target, source, g, p, j, found,
+                          [&](std::uint32_t i, double d, double share) {
+                              const double c = coefficient * share / d;
+                              local(i, 0) += c;
+                              local.row(i).tail<3>() += c * y;
+                          });
         }
     }
     for (const auto& local : scattered) {

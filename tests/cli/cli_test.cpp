@@ -3,6 +3,7 @@
 // exit code 2 for every kind of bad input.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_runner.h"
@@ -24,6 +25,8 @@ TEST(Cli, HelpListsEverySubcommandAndOption) {
     EXPECT_EQ(top.exit_code, 0);
     EXPECT_NE(top.out.find("info"), std::string::npos);
     EXPECT_NE(top.out.find("demo"), std::string::npos);
+    EXPECT_NE(top.out.find("smooth"), std::string::npos);
+    EXPECT_NE(top.out.find("distance"), std::string::npos);
     const auto info = run_genflow("info --help");
     EXPECT_EQ(info.exit_code, 0);
     EXPECT_NE(info.out.find("--json"), std::string::npos);
@@ -126,6 +129,30 @@ TEST(Cli, BadFilesAreRefusedWithOneLineNamingTheFile) {
     const auto missing = run_genflow("info " + quoted(directory / "missing.obj"));
     EXPECT_EQ(missing.exit_code, 2);
     EXPECT_NE(missing.err.find("no such file"), std::string::npos);
+}
+
+TEST(Cli, DistanceBetweenParallelSquares) {
+    const test::TemporaryDirectory directory;
+    TriangleMesh b = make_grid(7, 1.4);
+    b.V.rowwise() += Eigen::RowVector3d(-0.2, -0.2, 0.3);
+    write_mesh(directory / "a.ply", make_grid(5));
+    write_mesh(directory / "b.obj", b);
+    const auto result = run_genflow("distance " + quoted(directory / "a.ply") + " " +
+                                    quoted(directory / "b.obj") + " --json --alpha 16");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto json = nlohmann::json::parse(result.out);
+    EXPECT_NEAR(json["a_to_b"]["hausdorff"].get<double>(), 0.3, 1e-6);
+    EXPECT_NEAR(json["hausdorff"].get<double>(), std::sqrt(0.17), 1e-3);
+    EXPECT_NEAR(json["a_to_b"]["mean"].get<double>(), 0.3, 1e-9);
+    EXPECT_EQ(json["pseudo_hausdorff"]["alpha"], 16);
+    EXPECT_GT(json["pseudo_hausdorff"]["value"].get<double>(), 0.2);
+    const auto text =
+        run_genflow("distance " + quoted(directory / "a.ply") + " " + quoted(directory / "b.obj"));
+    EXPECT_EQ(text.exit_code, 0);
+    EXPECT_NE(text.out.find("symmetric: Hausdorff"), std::string::npos) << text.out;
+    const auto bad = run_genflow("distance " + quoted(directory / "a.ply") + " " +
+                                 quoted(directory / "none.ply"));
+    EXPECT_EQ(bad.exit_code, 2);
 }
 
 TEST(Cli, DemoWritesItsMeshAndReportsOnIt) {

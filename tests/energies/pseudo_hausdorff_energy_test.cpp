@@ -84,6 +84,15 @@ TEST(PseudoHausdorff, TruncationStaysWithinItsBound) {
     }
 }
 
+TEST(PseudoHausdorff, RepeatsTheNeighbourQueriesBeyondTheStorageBudget) {
+    const Pair pair = small_pair();
+    const auto stored = evaluate(pair, {.alpha = 8, .epsilon = 0.02, .truncation = 1e-4});
+    const auto requeried =
+        evaluate(pair, {.alpha = 8, .epsilon = 0.02, .truncation = 1e-4, .stored_term_budget = 50});
+    EXPECT_EQ(requeried.value, stored.value);
+    EXPECT_LT(test::relative_error(requeried.differential, stored.differential), 1e-13);
+}
+
 TEST(PseudoHausdorff, IsSymmetric) {
     const Pair pair = small_pair();
     const Eigen::VectorXd mx = lumped_masses(pair.X, MassType::Barycentric);

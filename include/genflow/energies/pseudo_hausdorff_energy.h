@@ -29,6 +29,10 @@ struct PseudoHausdorffOptions {
     /// 0 evaluates the exact O(P·Q) sums.
     double truncation = 1e-4;
     HausdorffWeights weights = HausdorffWeights::Paper;
+    /// With truncation, the kept terms of each of the two sums are stored for the gradient pass
+    /// up to this many (24 bytes each: 240 MB by default); beyond, the gradient pass repeats the
+    /// neighbour queries instead. Far-apart shapes keep most pairs, so this bounds the memory.
+    std::size_t stored_term_budget = 10'000'000;
 };
 
 /// Everything one evaluation produces; `value()`, `differential()` and `linearize()` share it.
