@@ -29,9 +29,10 @@ struct PseudoHausdorffOptions {
     /// 0 evaluates the exact O(P·Q) sums.
     double truncation = 1e-4;
     HausdorffWeights weights = HausdorffWeights::Paper;
-    /// With truncation, the kept terms of each of the two sums are stored for the gradient pass
-    /// up to this many (24 bytes each: 240 MB by default); beyond, the gradient pass repeats the
+    /// The terms of the g_j sums (over the moving mesh) are kept for the gradient pass up to
+    /// this many (16 bytes each: 160 MB by default); beyond, the gradient pass repeats those
     /// neighbour queries instead. Far-apart shapes keep most pairs, so this bounds the memory.
+    /// (The f_i sums keep nothing: their gradient part is summed on the fly.)
     std::size_t stored_term_budget = 10'000'000;
 };
 
@@ -69,8 +70,9 @@ struct PseudoHausdorffEvaluation {
 /// B_i = −Σ_j c_ij y_j, exact at X.
 ///
 /// Sums run in the log domain (no overflow or underflow for α up to hundreds and any scale);
-/// with truncation > 0 a kd-tree restricts them to near neighbours (the target's tree is built
-/// once, the source's at every evaluation), and both cores are used when OpenMP is available.
+/// with truncation > 0 a uniform grid restricts them to near neighbours (as in the paper; the
+/// target's grid is built once, the source's at every evaluation), and both cores are used
+/// when OpenMP is available.
 /// The last evaluation is cached, so value() then differential() at the same X cost one.
 ///
 /// \note X and Y may have any sampling, connectivity, boundaries or components. Unreferenced

@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: MIT
+// A uniform grid over a fixed set of 3D points for radius queries whose radius is known to be a
+// few cells (the truncated pseudo-Hausdorff sums, as in the paper's Appendix A). The points are
+// stored sorted by cell with a dense table of cell starts, so a query visits (2k+1)² contiguous
+// runs of points, one per row of cells along x, instead of walking a tree.
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace genflow::detail {
+
+class PointGrid {
+public:
+    /// Grids the rows of `points` (#P×3, finite), each with a `weight` (#P, kept for the
+    /// caller) and a positive `factor` (#P) for min_scaled_distance(), with cells of about
+    /// `cell_size` (> 0); the cells are enlarged when the bounding box would need more than about
+    /// 4·#P + 64 of them, so that memory stays linear.
+    PointGrid(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weights,
+              const Eigen::VectorXd& factors, double cell_size);
+
+    [[nodiscard]] double cell_size() const { return cell_; }
+    [[nodiscard]] bool empty() const { return id_.empty(); }
+
+    /// The number of cell rings k that a block around a query needs so that it holds every
+    /// point within `distance` of the query; 0 when blocks that large would cover the whole
+    /// grid anyway (k = 0 makes a query visit all points, without the block arithmetic).
+    [[nodiscard]] int rings_to_cover(double distance) const {
+        const double rings = std::max(1.0, std::ceil(distance / cell_));
+        return rings >= static_cast<double>(std::max({dims_[0], dims_[1], dims_[2]}))
+                   ? 0
+                   : static_cast<int>(rings);
+    }
+
+    /// min over the points p in the block of (2k+1)³ cells around the cell of `query` of
+    /// factor_p·(|query − p|² + offset), with the factors given at construction; +inf for an
+    /// empty block. The block holds every point within k·cell_size() of the query (which may
+    /// lie outside the grid); k = 0 means all points.
+    [[nodiscard]] double min_scaled_distance(const Eigen::Vector3d& query, int k,
+                                             double offset) const {
+        const double* x = x_.data();
+        const double* y = y_.data();
+        const double* z = z_.data();
+        const double* factor = factor_.data();
+        // Two independent minima break the dependency chain of one running minimum.
+        double even = std::numeric_limits<double>::infinity();
+        double odd = even;
+        constexpr double kEverywhere = std::numeric_limits<double>::infinity();
+        for_each_run(query, k, kEverywhere, [&](std::uint32_t begin, std::uint32_t end) {
+            std::uint32_t p = begin;
+            for (; p + 1 < end; p += 2) {
+                const double d0 =
+                    square(x[p] - query[0]) + square(y[p] - query[1]) + square(z[p] - query[2]);
+                const double d1 = square(x[p + 1] - query[0]) + square(y[p + 1] - query[1]) +
+                                  square(z[p + 1] - query[2]);
+                even = std::min(even, factor[p] * (d0 + offset));
+                odd = std::min(odd, factor[p + 1] * (d1 + offset));
+            }
+            if (p < end) {
+                const double d0 =
+                    square(x[p] - query[0]) + square(y[p] - query[1]) + square(z[p] - query[2]);
+                even = std::min(even, factor[p] * (d0 + offset));
+            }
+        });
+        return std::min(even, odd);
+    }
+
+    /// Calls visit(slot, squared distance) for every point of the block (as above) with
+    /// squared distance ≤ `radius2`; the accessors below read the point at `slot`.
+    template <typename Visit>
+    void visit_within(const Eigen::Vector3d& query, int k, double radius2, Visit&& visit) const {
+        const double* x = x_.data();
+        const double* y = y_.data();
+        const double* z = z_.data();
+        for_each_run(query, k, radius2, [&](std::uint32_t begin, std::uint32_t end) {
+            for (std::uint32_t p = begin; p < end; ++p) {
+                const double d =
+                    square(x[p] - query[0]) + square(y[p] - query[1]) + square(z[p] - query[2]);
+                if (d <= radius2) {
+                    visit(p, d);
+                }
+            }
+        });
+    }
+
+    /// The row, in the constructor's matrix, of the point at `slot`.
+    [[nodiscard]] std::uint32_t id(std::uint32_t slot) const { return id_[slot]; }
+    [[nodiscard]] double weight(std::uint32_t slot) const { return weight_[slot]; }
+    [[nodiscard]] Eigen::Vector3d position(std::uint32_t slot) const {
+        return {x_[slot], y_[slot], z_[slot]};
+    }
+
+private:
+    static double square(double v) { return v * v; }
+
+    // ⌊v⌋ of a cell coordinate, clamped to ±1e9 (far outside any grid); std::floor is a
+    // library call on baseline x86-64 and sits in the innermost setup loop.
+    static std::int64_t cell_floor(double v) {
+        const double clamped = std::clamp(v, -1e9, 1e9);
+        const auto truncated = static_cast<std::int64_t>(clamped);
+        return truncated - (clamped < static_cast<double>(truncated) ? 1 : 0);
+    }
+
+    // Calls run(begin, end) for the contiguous run of sorted points of each row of cells of
+    // the block around `query` (k = 0: one run of all points), leaving out the cells farther
+    // than sqrt(radius2) from the query.
+    template <typename Run>
+    void for_each_run(const Eigen::Vector3d& query, int k, double radius2, Run&& run) const {
+        if (k <= 0) {
+            run(0U, static_cast<std::uint32_t>(id_.size()));
+            return;
+        }
+        std::array<std::int64_t, 3> low{};
+        std::array<std::int64_t, 3> high{};
+        for (std::size_t a = 0; a < 3; ++a) {
+            const auto axis = static_cast<Eigen::Index>(a);
+            const std::int64_t cell = cell_floor((query[axis] - origin_[axis]) / cell_);
+            low[a] = std::max<std::int64_t>(cell - k, 0);
+            high[a] = std::min<std::int64_t>(cell + k, dims_[a] - 1);
+            if (low[a] > high[a]) {
+                return;
+            }
+        }
+        // Squared distance from the query to the slab of cells `c` along `axis`.
+        const auto gap2 = [&](Eigen::Index axis, std::int64_t c) {
+            const double low_side = origin_[axis] + static_cast<double>(c) * cell_;
+            const double gap =
+                std::max({low_side - query[axis], query[axis] - (low_side + cell_), 0.0});
+            return gap * gap;
+        };
+        for (std::int64_t z = low[2]; z <= high[2]; ++z) {
+            const double gz = gap2(2, z);
+            if (gz > radius2) {
+                continue;
+            }
+            for (std::int64_t y = low[1]; y <= high[1]; ++y) {
+                const double left = radius2 - gz - gap2(1, y);
+                if (left < 0) {
+                    continue;
+                }
+                // The cells along x that the ball reaches in this row.
+                const double half = std::sqrt(left);
+                const std::int64_t first =
+                    std::max(low[0], cell_floor((query[0] - half - origin_[0]) / cell_));
+                const std::int64_t last =
+                    std::min(high[0], cell_floor((query[0] + half - origin_[0]) / cell_));
+                if (first > last) {
+                    continue;
+                }
+                const std::int64_t row = (z * dims_[1] + y) * dims_[0];
+                run(start_[static_cast<std::size_t>(row + first)],
+                    start_[static_cast<std::size_t>(row + last + 1)]);
+            }
+        }
+    }
+
+    double cell_ = 1;
+    Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+    std::array<std::int64_t, 3> dims_{1, 1, 1};
+    std::vector<std::uint32_t> start_;  // per cell (x fastest), plus one: first point in it
+    std::vector<double> x_, y_, z_;     // coordinates in cell order
+    std::vector<double> weight_;        // per point, in cell order
+    std::vector<double> factor_;        // per point, in cell order
+    std::vector<std::uint32_t> id_;     // original row, in cell order
+};
+
+}  // namespace genflow::detail

@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+#include "spatial/point_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "genflow/mesh/primitives.h"
+
+namespace genflow::detail {
+namespace {
+
+std::vector<std::uint32_t> ids_within(const PointGrid& grid, const Eigen::Vector3d& query,
+                                      int rings, double radius2) {
+    std::vector<std::uint32_t> ids;
+    grid.visit_within(query, rings, radius2,
+                      [&](std::uint32_t slot, double) { ids.push_back(grid.id(slot)); });
+    std::sort(ids.begin(), ids.end());
+    return ids;
+}
+
+std::vector<std::uint32_t> brute_force_within(const Eigen::MatrixX3d& points,
+                                              const Eigen::Vector3d& query, double radius2) {
+    std::vector<std::uint32_t> ids;
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        if ((points.row(i).transpose() - query).squaredNorm() <= radius2) {
+            ids.push_back(static_cast<std::uint32_t>(i));
+        }
+    }
+    return ids;
+}
+
+TEST(PointGrid, RadiusQueriesEqualBruteForceInsideAndOutsideTheGrid) {
+    const Eigen::MatrixX3d points = make_icosphere(3).V;
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(points.rows());
+    std::mt19937 generator(3);
+    std::uniform_real_distribution<double> uniform(-2.5, 2.5);  // the sphere has radius 1
+    for (const double cell : {0.05, 0.2, 1.0}) {
+        const PointGrid grid(points, ones, ones, cell);
+        for (int trial = 0; trial < 200; ++trial) {
+            const Eigen::Vector3d query(uniform(generator), uniform(generator), uniform(generator));
+            const double radius = 0.02 + 0.6 * std::abs(uniform(generator));
+            const int rings = grid.rings_to_cover(radius);
+            ASSERT_EQ(ids_within(grid, query, rings, radius * radius),
+                      brute_force_within(points, query, radius * radius))
+                << "cell " << cell << " trial " << trial;
+        }
+    }
+}
+
+TEST(PointGrid, MinScaledDistanceCoversItsBlock) {
+    const Eigen::MatrixX3d points = make_icosphere(3).V;
+    std::mt19937 generator(4);
+    std::uniform_real_distribution<double> uniform(0.5, 2.0);
+    Eigen::VectorXd factors(points.rows());
+    for (Eigen::Index i = 0; i < factors.size(); ++i) {
+        factors[i] = uniform(generator);
+    }
+    const PointGrid grid(points, Eigen::VectorXd::Ones(points.rows()), factors, 0.1);
+    for (Eigen::Index q = 0; q < points.rows(); q += 7) {
+        const Eigen::Vector3d query = 1.01 * points.row(q).transpose();
+        // Over all points (rings = 0) it is the exact minimum...
+        double expected = std::numeric_limits<double>::infinity();
+        for (Eigen::Index i = 0; i < points.rows(); ++i) {
+            expected = std::min(
+                expected, factors[i] * ((points.row(i).transpose() - query).squaredNorm() + 0.01));
+        }
+        EXPECT_DOUBLE_EQ(grid.min_scaled_distance(query, 0, 0.01), expected);
+        // ...and over one ring it is never below it, and finite: the query's block holds
+        // the point it was made from.
+        const double one_ring = grid.min_scaled_distance(query, 1, 0.01);
+        EXPECT_GE(one_ring, expected * (1 - 1e-14));
+        EXPECT_LE(one_ring,
+                  factors[q] * ((0.01 * points.row(q)).squaredNorm() + 0.01) * (1 + 1e-14));
+    }
+}
+
+TEST(PointGrid, ElongatedSetsKeepTheCellTableLinear) {
+    // A needle 1e6 cells long: the grid must enlarge its cells instead of allocating them all.
+    Eigen::MatrixX3d points(100, 3);
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        points.row(i) << static_cast<double>(i) * 1e4, 0.0, 0.0;
+    }
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(points.rows());
+    const PointGrid grid(points, ones, ones, 1.0);
+    EXPECT_GT(grid.cell_size(), 1.0);
+    EXPECT_EQ(ids_within(grid, Eigen::Vector3d(5e4, 1, 0), grid.rings_to_cover(2e4), 4e8),
+              brute_force_within(points, Eigen::Vector3d(5e4, 1, 0), 4e8));
+}
+
+TEST(PointGrid, AnEmptySetFindsNothing) {
+    const PointGrid grid(Eigen::MatrixX3d(0, 3), Eigen::VectorXd(0), Eigen::VectorXd(0), 1.0);
+    EXPECT_TRUE(grid.empty());
+    EXPECT_TRUE(ids_within(grid, Eigen::Vector3d::Zero(), 0, 1e300).empty());
+    EXPECT_EQ(grid.min_scaled_distance(Eigen::Vector3d::Zero(), 1, 0),
+              std::numeric_limits<double>::infinity());
+}
+
+}  // namespace
+}  // namespace genflow::detail
