@@ -12,21 +12,9 @@
 #include "genflow/mesh/primitives.h"
 #include "genflow/operators/mass_matrix.h"
 #include "genflow/spatial/surface_distance.h"
+#include "support/reference_distances.h"
 
-namespace {
-
-double vertex_hausdorff(const Eigen::MatrixX3d& A, const Eigen::MatrixX3d& B) {
-    const auto one_sided = [](const Eigen::MatrixX3d& from, const Eigen::MatrixX3d& to) {
-        double worst = 0;
-        for (Eigen::Index i = 0; i < from.rows(); ++i) {
-            worst = std::max(worst, (to.rowwise() - from.row(i)).rowwise().norm().minCoeff());
-        }
-        return worst;
-    };
-    return std::max(one_sided(A, B), one_sided(B, A));
-}
-
-}  // namespace
+using genflow::test::vertex_hausdorff;
 
 int main() {
     const double epsilon = 1e-3;

@@ -13,6 +13,7 @@
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/operators/mass_matrix.h"
 #include "genflow/operators/mesh_size.h"
+#include "support/reference_distances.h"
 #include "support/test_meshes.h"
 
 namespace genflow {
@@ -37,16 +38,7 @@ PseudoHausdorffEvaluation evaluate(const Pair& pair, const PseudoHausdorffOption
 }
 
 // Brute-force Hausdorff distance between the vertex sets.
-double vertex_hausdorff(const Eigen::MatrixX3d& A, const Eigen::MatrixX3d& B) {
-    const auto one_sided = [](const Eigen::MatrixX3d& from, const Eigen::MatrixX3d& to) {
-        double worst = 0;
-        for (Eigen::Index i = 0; i < from.rows(); ++i) {
-            worst = std::max(worst, (to.rowwise() - from.row(i)).rowwise().norm().minCoeff());
-        }
-        return worst;
-    };
-    return std::max(one_sided(A, B), one_sided(B, A));
-}
+using test::vertex_hausdorff;
 
 TEST(PseudoHausdorff, DifferentialMatchesFiniteDifferencesForSeveralAlphaAndEpsilon) {
     const Pair pair = small_pair();

@@ -10,6 +10,7 @@
 #include "genflow/io/read_mesh.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/spatial/closest_point.h"
+#include "support/reference_distances.h"
 #include "support/test_meshes.h"
 
 namespace genflow {
@@ -64,44 +65,8 @@ TEST(SurfaceDistance, IdenticalMeshesAreAtZero) {
     EXPECT_LT(d.mean, 1e-12);
 }
 
-// An independent estimate: dense barycentric sampling of `from` and a brute-force scan of
-// `to`'s faces. It is a lower bound of the true Hausdorff distance, and within the sampling
-// radius of it.
-struct SampledDistance {
-    double max = 0;
-    double mean = 0;
-    double radius = 0;
-};
-
-SampledDistance sampled_distance(const TriangleMesh& from, const TriangleMesh& to, int k) {
-    const TriangleBvh bvh(to);
-    SampledDistance s;
-    double area = 0;
-    for (Eigen::Index f = 0; f < from.F.rows(); ++f) {
-        const Eigen::Vector3d a = from.V.row(from.F(f, 0)).transpose();
-        const Eigen::Vector3d b = from.V.row(from.F(f, 1)).transpose();
-        const Eigen::Vector3d c = from.V.row(from.F(f, 2)).transpose();
-        const double face_area = 0.5 * (b - a).cross(c - a).norm();
-        s.radius =
-            std::max(s.radius, std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()}) / k);
-        double sum = 0;
-        int count = 0;
-        for (int i = 0; i <= k; ++i) {
-            for (int j = 0; i + j <= k; ++j) {
-                const Eigen::Vector3d p = a + (static_cast<double>(i) / k) * (b - a) +
-                                          (static_cast<double>(j) / k) * (c - a);
-                const double d = bvh.distance(p);
-                s.max = std::max(s.max, d);
-                sum += d;
-                ++count;
-            }
-        }
-        s.mean += face_area * sum / count;
-        area += face_area;
-    }
-    s.mean /= area;
-    return s;
-}
+using test::sampled_distance;
+using test::SampledDistance;
 
 TEST(SurfaceDistance, AgreesWithDenseSamplingOnARealPairWithinTheStatedBounds) {
     const auto data = test::data_directory();
