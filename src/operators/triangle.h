@@ -26,7 +26,8 @@ inline bool finite_at_least(double x, double lo) {
 /// True if no coordinate is NaN or infinite. Written with std::isfinite rather than Eigen's
 /// allFinite(), which computes x − x and so raises FE_INVALID on infinities (our Debug tests
 /// trap floating-point exceptions).
-inline bool all_finite(const Eigen::MatrixX3d& V) {
+template <typename Derived>
+bool all_finite(const Eigen::PlainObjectBase<Derived>& V) {
     return std::all_of(V.data(), V.data() + V.size(), [](double x) { return std::isfinite(x); });
 }
 

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "genflow/metrics/metric.h"
+#include "genflow/operators/mass_matrix.h"
+
+namespace genflow {
+
+/// A block of deformation fields that a subspace metric treats alike (SPEC.md §6).
+struct FieldBlock {
+    /// 3n×m: column c is one field, the vector of vertex i in rows 3i, 3i+1, 3i+2.
+    Eigen::MatrixXd fields;
+    /// Penalty μ > 0 on motions in the block's span: the metric is μ times L2 there, so μ < 1
+    /// makes them cheaper (the flow prefers them by 1/μ) and μ = 1 is neutral.
+    double penalty = 1;
+};
+
+/// Builds the blocks, in priority order, at the current positions of `mesh`, with `masses`
+/// the metric's lumped vertex masses (for centroids that match the inner product).
+using FieldBasis =
+    std::function<std::vector<FieldBlock>(const TriangleMesh& mesh, const Eigen::VectorXd& masses)>;
+
+/// Parameters of the subspace metric.
+struct SubspaceOptions {
+    /// The lumped mass M of the underlying L2 inner product.
+    MassType mass = MassType::Barycentric;
+};
+
+/// The prioritized subspace metric of SPEC.md §6, one mechanism for the quasi-rigid (§6.3.1)
+/// and quasi-articulated (§6.3.2) priors: given blocks B_1, …, B_K with penalties μ_k, block
+/// Gram–Schmidt in the M inner product gives M-orthonormal Q_k (each block minus what earlier
+/// blocks span; directions already spanned are dropped), and
+///
+///     G = M·L,  L = I + Σ_k (μ_k − 1) Q_k Q_kᵀ M,   G⁻¹ dE = M⁻¹ dE + Σ_k (1/μ_k − 1) Q_k Q_kᵀ dE,
+///
+/// which is SPD for any μ_k > 0 (the paper's eqs. 17–19 are not; see SPEC.md §6). The blocks are
+/// rebuilt from the current positions at every `update()`; applying G or G⁻¹ costs O(n·m), the
+/// rebuild O(n·m²) for m fields in all.
+///
+/// The implicit step (`shifted_gradient`) supports a diagonal A (the pseudo-Hausdorff
+/// linearization): G + dt·A = E + U Γ Uᵀ with E = M + dt·A diagonal, U = [M Q_k] and
+/// Γ = diag(μ_k − 1), solved by the Woodbury identity (SPEC.md §9).
+///
+/// \note Fixed vertices are not supported (update() throws if a mask is set).
+class SubspaceMetric final : public Metric {
+public:
+    explicit SubspaceMetric(FieldBasis basis, SubspaceOptions options = {});
+
+    /// \throws InvalidInput as Metric::update(), if a fixed-vertex mask is set, or if the basis
+    ///         returns a block with the wrong row count, a non-finite entry or a penalty that
+    ///         is not positive and finite.
+    void update(const TriangleMesh& mesh) override;
+    [[nodiscard]] VertexField gradient(const VertexField& dEdX) const override;
+    [[nodiscard]] VertexField apply(const VertexField& U) const override;
+    /// \throws InvalidInput additionally if A is not diagonal.
+    [[nodiscard]] VertexField shifted_gradient(const Eigen::SparseMatrix<double>& A, double dt,
+                                               const VertexField& R) override;
+
+    /// The M-orthonormal blocks Q_k of the last update() (empty blocks dropped), with their
+    /// penalties.
+    [[nodiscard]] const std::vector<FieldBlock>& orthonormal_blocks() const { return blocks_; }
+    /// The lumped masses of the last update().
+    [[nodiscard]] const Eigen::VectorXd& masses() const { return masses_; }
+
+private:
+    FieldBasis basis_;
+    SubspaceOptions options_;
+    Eigen::VectorXd masses_;
+    std::vector<FieldBlock> blocks_;
+};
+
+/// Penalties of the quasi-rigid prior (paper §6.3.1): each in (0, 1], smaller = that motion is
+/// cheaper. The defaults are SPEC.md §9's (a step is then almost entirely rigid plus scaling).
+struct QuasiRigidOptions {
+    double translation = 5e-3;
+    double rotation = 5e-3;
+    double scaling = 5e-2;
+    MassType mass = MassType::Barycentric;
+};
+
+/// The fields of rigid motion and scaling at the current positions: translations e_a,
+/// rotations e_a × (x_i − c) and the scaling x_i − c about the M-centroid c (SPEC.md §5: the
+/// blocks are M-orthogonal only for that centre), in blocks T, R, S with the given penalties.
+[[nodiscard]] std::vector<FieldBlock> rigid_motion_blocks(const TriangleMesh& mesh,
+                                                          const Eigen::VectorXd& masses,
+                                                          const QuasiRigidOptions& options);
+
+/// The quasi-rigid metric: a SubspaceMetric over rigid_motion_blocks() (paper eq. 16).
+[[nodiscard]] SubspaceMetric quasi_rigid_metric(const QuasiRigidOptions& options = {});
+
+}  // namespace genflow
