@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <functional>
+#include <limits>
+
+#include "genflow/energies/energy.h"
+#include "genflow/flows/flow.h"
+#include "genflow/metrics/metric.h"
+
+namespace genflow {
+
+/// Parameters of gradient_descent(). Scale-free use: give max_displacement relative to the
+/// shape (SPEC.md §9: 2 % of the bounding-box diagonal).
+struct DescentOptions {
+    /// No vertex moves farther than this in one step (a length, > 0): the step size is capped
+    /// at max_displacement / max_i |g_i|, so the cap follows the shape, not the energy's units.
+    double max_displacement = 0;
+    /// Stop after this many accepted steps.
+    int max_steps = 500;
+    /// Converged when E fell by less than stagnation_tolerance·|E| over the last
+    /// stagnation_window steps (0: never).
+    double stagnation_tolerance = 1e-4;
+    int stagnation_window = 20;
+    /// Converged when E ≤ this (for energies with a known floor, as d_H ≈ 0).
+    double target_energy = -std::numeric_limits<double>::infinity();
+    /// Stop after this much wall time, checked after every step.
+    double max_seconds = std::numeric_limits<double>::infinity();
+    /// Called after every accepted step; return false to stop (status Cancelled). Optional.
+    std::function<bool(const FlowProgress&)> progress = {};
+};
+
+/// Steepest descent in the metric with Armijo backtracking (SPEC.md §9): g = G⁻¹ dE/dX,
+/// X ← X − τ g, where τ starts at min(2 τ_previous, cap) and is halved until
+/// E(X − τ g) ≤ E(X) − 10⁻⁴ τ ⟨dE, g⟩; the energy therefore decreases at every step. The
+/// metric is updated at every accepted position. This is the explicit flow of eq. 10 with an
+/// adaptive time step, for energies whose stiffness is unknown in advance (the
+/// pseudo-Hausdorff distance of shape matching).
+///
+/// Status: Converged when no step of at least 2⁻⁴⁰ cap decreases E, on stagnation, or at the
+/// target energy; otherwise as FlowStatus says.
+///
+/// \throws InvalidInput if the options are invalid (max_displacement not positive and finite,
+///         max_steps < 0, a negative tolerance or window, max_seconds ≤ 0) or the metric
+///         refuses the mesh.
+/// \throws SolverError  if the metric cannot be factored at the input positions.
+[[nodiscard]] FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy,
+                                          Metric& metric, const DescentOptions& options);
+
+}  // namespace genflow

@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: MIT
+#include "genflow/flows/gradient_descent.h"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "genflow/exceptions.h"
+#include "operators/triangle.h"
+
+namespace genflow {
+
+namespace {
+
+constexpr double kArmijo = 1e-4;
+constexpr int kMaxHalvings = 40;
+
+void check_options(const DescentOptions& options) {
+    if (!detail::finite_above(options.max_displacement, 0)) {
+        throw InvalidInput("gradient_descent: max_displacement must be positive and finite, got " +
+                           std::to_string(options.max_displacement));
+    }
+    if (options.max_steps < 0 || !detail::finite_at_least(options.stagnation_tolerance, 0) ||
+        options.stagnation_window < 0 || std::isnan(options.max_seconds) ||
+        options.max_seconds <= 0 || std::isnan(options.target_energy)) {
+        throw InvalidInput(
+            "gradient_descent: need max_steps >= 0, stagnation_tolerance >= 0, "
+            "stagnation_window >= 0, max_seconds > 0 and a target energy that is not NaN");
+    }
+}
+
+}  // namespace
+
+FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy, Metric& metric,
+                            const DescentOptions& options) {
+    check_options(options);
+    detail::require_valid_mesh(mesh, "gradient_descent");
+    metric.update(mesh);
+    const auto start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+
+    FlowResult result;
+    result.mesh = mesh;
+    double value = energy.value(mesh);
+    result.energy.push_back(value);
+    if (!std::isfinite(value)) {
+        result.status = FlowStatus::NonFinite;
+        result.message = "gradient_descent: the energy is not finite at the input";
+        return result;
+    }
+    result.status = FlowStatus::MaxSteps;
+    double step_size = 0;  // τ of the last accepted step; 0 before the first
+    while (result.steps < options.max_steps) {
+        if (value <= options.target_energy) {
+            result.status = FlowStatus::Converged;
+            break;
+        }
+        VertexField g;
+        double slope = 0;
+        try {
+            if (result.steps > 0) {
+                metric.update(result.mesh);
+            }
+            const VertexField differential = energy.differential(result.mesh);
+            g = metric.gradient(differential);
+            slope = (differential.array() * g.array()).sum();  // ‖g‖²_G
+        } catch (const SolverError& e) {
+            result.status = FlowStatus::SolverFailed;
+            result.message = e.what();
+            break;
+        }
+        const double largest = g.rowwise().norm().maxCoeff();
+        if (!std::isfinite(slope) || !std::isfinite(largest)) {
+            result.status = FlowStatus::NonFinite;
+            result.message = "gradient_descent: non-finite gradient at step " +
+                             std::to_string(result.steps + 1);
+            break;
+        }
+        if (!(slope > 0) || !(largest > 0)) {
+            result.status = FlowStatus::Converged;  // a stationary point
+            break;
+        }
+        const double cap = options.max_displacement / largest;
+        double tau = step_size > 0 ? std::min(2 * step_size, cap) : cap;
+        TriangleMesh trial = result.mesh;
+        bool accepted = false;
+        double trial_value = value;
+        for (int halving = 0; halving <= kMaxHalvings; ++halving, tau /= 2) {
+            trial.V = result.mesh.V - tau * g;
+            trial_value = energy.value(trial);
+            if (std::isfinite(trial_value) && trial_value <= value - kArmijo * tau * slope) {
+                accepted = true;
+                break;
+            }
+        }
+        if (!accepted) {
+            result.status = FlowStatus::Converged;  // no descent left at this resolution
+            break;
+        }
+        step_size = tau;
+        result.mesh = std::move(trial);
+        value = trial_value;
+        ++result.steps;
+        result.energy.push_back(value);
+        if (options.progress) {
+            const FlowProgress progress{result.steps, options.max_steps, value, elapsed(),
+                                        &result.mesh};
+            if (!options.progress(progress)) {
+                result.status = FlowStatus::Cancelled;
+                break;
+            }
+        }
+        const int window = options.stagnation_window;
+        if (window > 0 && result.steps >= window) {
+            const double before = result.energy[result.energy.size() - 1 - window];
+            if (before - value <= options.stagnation_tolerance * std::abs(value)) {
+                result.status = FlowStatus::Converged;
+                break;
+            }
+        }
+        if (elapsed() >= options.max_seconds) {
+            result.status = FlowStatus::TimeLimit;
+            break;
+        }
+    }
+    result.seconds = elapsed();
+    return result;
+}
+
+}  // namespace genflow

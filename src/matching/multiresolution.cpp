@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: MIT
+#include "genflow/matching/multiresolution.h"
+
+#include <meshoptimizer.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <array>
+#include <numeric>
+#include <string>
+
+#include "genflow/exceptions.h"
+#include "genflow/operators/mesh_size.h"
+#include "genflow/operators/normals.h"
+#include "genflow/spatial/closest_point.h"
+#include "operators/triangle.h"
+#include "spatial/point_index.h"
+
+namespace genflow {
+
+namespace {
+
+// The rotation nearest to A (its polar factor), or the identity when A vanishes.
+Eigen::Matrix3d polar_rotation(const Eigen::Matrix3d& A) {
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    if (!(svd.singularValues()[0] > 0)) {
+        return Eigen::Matrix3d::Identity();
+    }
+    Eigen::Matrix3d U = svd.matrixU();
+    if ((U * svd.matrixV().transpose()).determinant() < 0) {
+        U.col(2) *= -1;  // the nearest proper rotation
+    }
+    return U * svd.matrixV().transpose();
+}
+
+}  // namespace
+
+CoarseMesh coarsen(const TriangleMesh& mesh, Eigen::Index target_vertices) {
+    detail::require_valid_mesh(mesh, "coarsen");
+    if (mesh.F.rows() == 0) {
+        throw InvalidInput("coarsen: the mesh has no faces");
+    }
+    if (target_vertices < 4) {
+        throw InvalidInput("coarsen: target_vertices must be at least 4");
+    }
+    const Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> positions =
+        mesh.V.cast<float>();
+    const Eigen::Matrix<unsigned, Eigen::Dynamic, 3, Eigen::RowMajor> faces =
+        mesh.F.cast<unsigned>();
+    // A closed triangle mesh has about twice as many faces as vertices.
+    const double ratio = static_cast<double>(target_vertices) / static_cast<double>(mesh.V.rows());
+    const auto target_indices = static_cast<std::size_t>(
+        3 * std::clamp<double>(std::round(ratio * static_cast<double>(mesh.F.rows())), 4,
+                               static_cast<double>(mesh.F.rows())));
+    std::vector<unsigned> simplified(static_cast<std::size_t>(faces.size()));
+    const std::size_t count = meshopt_simplify(
+        simplified.data(), faces.data(), static_cast<std::size_t>(faces.size()), positions.data(),
+        static_cast<std::size_t>(mesh.V.rows()), 3 * sizeof(float), target_indices,
+        /*target_error=*/1.0F, meshopt_SimplifyLockBorder, nullptr);
+
+    // meshoptimizer can leave a few fins: two faces on the same three vertices (1–13 on the
+    // 28K-vertex TOSCA cat). Both copies go; the surface around them stays manifold.
+    std::vector<std::array<unsigned, 3>> sorted(count / 3);
+    for (std::size_t f = 0; f < count / 3; ++f) {
+        sorted[f] = {simplified[3 * f], simplified[3 * f + 1], simplified[3 * f + 2]};
+        std::sort(sorted[f].begin(), sorted[f].end());
+    }
+    std::vector<std::size_t> order(sorted.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return sorted[a] < sorted[b]; });
+    std::vector<char> keep(sorted.size(), 1);
+    for (std::size_t k = 1; k < order.size(); ++k) {
+        if (sorted[order[k]] == sorted[order[k - 1]]) {
+            keep[order[k]] = 0;
+            keep[order[k - 1]] = 0;
+        }
+    }
+
+    CoarseMesh coarse;
+    std::vector<Eigen::Index> coarse_of(static_cast<std::size_t>(mesh.V.rows()), -1);
+    std::vector<int> faces_kept;
+    for (std::size_t f = 0; f < sorted.size(); ++f) {
+        if (!keep[f]) {
+            continue;
+        }
+        for (std::size_t c = 0; c < 3; ++c) {
+            const unsigned fine = simplified[3 * f + c];
+            if (coarse_of[fine] < 0) {
+                coarse_of[fine] = static_cast<Eigen::Index>(coarse.fine_vertex.size());
+                coarse.fine_vertex.push_back(fine);
+            }
+            faces_kept.push_back(static_cast<int>(coarse_of[fine]));
+        }
+    }
+    coarse.mesh.F = Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+        faces_kept.data(), static_cast<Eigen::Index>(faces_kept.size() / 3), 3);
+    coarse.mesh.V.resize(static_cast<Eigen::Index>(coarse.fine_vertex.size()), 3);
+    for (std::size_t k = 0; k < coarse.fine_vertex.size(); ++k) {
+        coarse.mesh.V.row(static_cast<Eigen::Index>(k)) = mesh.V.row(coarse.fine_vertex[k]);
+    }
+    return coarse;
+}
+
+Embedding embed(const TriangleMesh& fine, const TriangleMesh& coarse) {
+    detail::require_valid_mesh(fine, "embed");
+    const TriangleBvh bvh(coarse);  // validates the coarse mesh
+    const Eigen::MatrixX3d fine_normals = vertex_normals(fine);
+    const Eigen::MatrixX3d coarse_normals = face_normals(coarse);
+    // For the thin-part fallback: the faces around each coarse vertex, and a point index.
+    std::vector<std::vector<int>> faces_at(static_cast<std::size_t>(coarse.V.rows()));
+    for (Eigen::Index f = 0; f < coarse.F.rows(); ++f) {
+        for (int c = 0; c < 3; ++c) {
+            faces_at[static_cast<std::size_t>(coarse.F(f, c))].push_back(static_cast<int>(f));
+        }
+    }
+    const detail::PointIndex vertices(coarse.V);
+    const auto corner = [&](Eigen::Index f, int c) -> Eigen::Vector3d {
+        return coarse.V.row(coarse.F(f, c)).transpose();
+    };
+
+    const Eigen::Index n = fine.V.rows();
+    Embedding e{Eigen::VectorXi(n), Eigen::MatrixX3d(n, 3), Eigen::MatrixX3d(n, 3)};
+    std::vector<std::pair<std::uint32_t, double>> near;
+#pragma omp parallel for schedule(dynamic, 256) private(near)
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const Eigen::Vector3d p = fine.V.row(i).transpose();
+        const Eigen::Vector3d normal = fine_normals.row(i).transpose();
+        SurfacePoint best = bvh.closest_point(p);
+        if (coarse_normals.row(best.face).dot(normal) <= 0 && normal.squaredNorm() > 0) {
+            // The nearest face faces away (the other side of a thin part): look among the
+            // faces around the coarse vertices within a few times that distance.
+            vertices.within(p, std::pow(3 * best.distance + 1e-300, 2), near);
+            double closest = std::numeric_limits<double>::infinity();
+            for (const auto& [v, unused] : near) {
+                for (const int f : faces_at[v]) {
+                    if (coarse_normals.row(f).dot(normal) <= 0) {
+                        continue;
+                    }
+                    const Eigen::Vector3d w =
+                        closest_point_on_triangle(p, corner(f, 0), corner(f, 1), corner(f, 2));
+                    const Eigen::Vector3d q =
+                        w[0] * corner(f, 0) + w[1] * corner(f, 1) + w[2] * corner(f, 2);
+                    if ((q - p).norm() < closest) {
+                        closest = (q - p).norm();
+                        best = {f, w, q, closest};
+                    }
+                }
+            }
+        }
+        e.face[i] = static_cast<int>(best.face);
+        e.barycentric.row(i) = best.barycentric.transpose();
+        e.offset.row(i) = (p - best.point).transpose();
+    }
+    return e;
+}
+
+TriangleMesh transfer(const TriangleMesh& fine_rest, const TriangleMesh& coarse_rest,
+                      const Eigen::MatrixX3d& coarse_deformed, const Embedding& embedding) {
+    const Eigen::Index n = fine_rest.V.rows();
+    const Eigen::Index m = coarse_rest.V.rows();
+    if (coarse_deformed.rows() != m || embedding.face.size() != n ||
+        embedding.barycentric.rows() != n || embedding.offset.rows() != n) {
+        throw InvalidInput("transfer: the embedding, meshes and positions have different sizes");
+    }
+    detail::require_valid_mesh(coarse_rest, "transfer");
+    if (!detail::all_finite(coarse_deformed)) {
+        throw InvalidInput("transfer: the deformed coarse positions are not finite");
+    }
+    for (Eigen::Index i = 0; i < n; ++i) {
+        if (embedding.face[i] < 0 || embedding.face[i] >= coarse_rest.F.rows()) {
+            throw InvalidInput("transfer: the embedding names a face the coarse mesh lacks");
+        }
+    }
+    // One-ring rotation fits R_b, with the normal term h² n'_b n_bᵀ (SPEC.md §9).
+    TriangleMesh deformed_coarse{coarse_deformed, coarse_rest.F};
+    const Eigen::MatrixX3d n_rest = vertex_normals(coarse_rest);
+    const Eigen::MatrixX3d n_deformed = vertex_normals(deformed_coarse);
+    const double h = mean_edge_length(coarse_rest);
+    std::vector<Eigen::Matrix3d> covariance(static_cast<std::size_t>(m));
+    for (Eigen::Index b = 0; b < m; ++b) {
+        covariance[static_cast<std::size_t>(b)] =
+            h * h * n_deformed.row(b).transpose() * n_rest.row(b);
+    }
+    for (Eigen::Index f = 0; f < coarse_rest.F.rows(); ++f) {
+        for (int c = 0; c < 3; ++c) {
+            const int a = coarse_rest.F(f, c);
+            const int b = coarse_rest.F(f, (c + 1) % 3);
+            // Each directed edge once per face: both ends see the other.
+            const Eigen::Vector3d rest = (coarse_rest.V.row(b) - coarse_rest.V.row(a)).transpose();
+            const Eigen::Vector3d moved = (coarse_deformed.row(b) - coarse_deformed.row(a)).transpose();
+            covariance[static_cast<std::size_t>(a)] += moved * rest.transpose();
+            covariance[static_cast<std::size_t>(b)] += moved * rest.transpose();
+        }
+    }
+    std::vector<Eigen::Matrix3d> rotation(static_cast<std::size_t>(m));
+    for (Eigen::Index b = 0; b < m; ++b) {
+        rotation[static_cast<std::size_t>(b)] = polar_rotation(covariance[static_cast<std::size_t>(b)]);
+    }
+    TriangleMesh result = fine_rest;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const int f = embedding.face[i];
+        Eigen::Vector3d base = Eigen::Vector3d::Zero();
+        Eigen::Matrix3d blended = Eigen::Matrix3d::Zero();
+        for (int c = 0; c < 3; ++c) {
+            const int b = coarse_rest.F(f, c);
+            const double w = embedding.barycentric(i, c);
+            base += w * coarse_deformed.row(b).transpose();
+            blended += w * rotation[static_cast<std::size_t>(b)];
+        }
+        result.V.row(i) =
+            (base + polar_rotation(blended) * embedding.offset.row(i).transpose()).transpose();
+    }
+    return result;
+}
+
+}  // namespace genflow
