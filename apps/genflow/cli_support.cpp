@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "cli_support.h"
 
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "genflow/exceptions.h"
 #include "genflow/io/read_mesh.h"
@@ -27,6 +29,20 @@ void print_warnings(const LoadedMesh& loaded) {
         if (issue.severity == Severity::Warning) {
             std::cerr << "warning: " << loaded.path.string() << ": " << issue.message << '\n';
         }
+    }
+}
+
+std::string frame_name(int step) {
+    std::ostringstream name;
+    name << "frame_" << std::setw(5) << std::setfill('0') << step << ".ply";
+    return name.str();
+}
+
+void create_frames_directory(const std::filesystem::path& directory) {
+    std::error_code error;
+    std::filesystem::create_directories(directory, error);
+    if (error) {
+        throw IoError(directory.string() + ": cannot create directory (" + error.message() + ")");
     }
 }
 

@@ -35,4 +35,10 @@ LoadedMesh load_mesh(const std::filesystem::path& path);
 /// Prints "warning: <line>" on stderr for each reader warning and each validation warning.
 void print_warnings(const LoadedMesh& loaded);
 
+/// "frame_00042.ply": the name of animation frame `step` in a --frames directory.
+std::string frame_name(int step);
+
+/// Creates `directory` (and its parents) for --frames; throws IoError naming it on failure.
+void create_frames_directory(const std::filesystem::path& directory);
+
 }  // namespace genflow::cli

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     register_info_command(app);
     register_smooth_command(app);
     register_distance_command(app);
+    register_match_command(app);
     register_demo_command(app);
     try {
         app.parse(argc, argv);

@@ -3,11 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
-#include <sstream>
 
 #include "commands.h"
 #include "genflow/exceptions.h"
@@ -46,12 +44,6 @@ struct SmoothCommandOptions {
     int frame_every = 1;
 };
 
-std::string frame_name(int step) {
-    std::ostringstream name;
-    name << "frame_" << std::setw(5) << std::setfill('0') << step << ".ply";
-    return name.str();
-}
-
 void run_smooth(SmoothCommandOptions options) {
     // Refuse an unwritable format before spending time on the flow.
     const auto format = mesh_format_from_extension(options.output);
@@ -64,11 +56,7 @@ void run_smooth(SmoothCommandOptions options) {
     }
     const std::filesystem::path frames(options.frames);
     if (!options.frames.empty()) {
-        std::error_code error;
-        std::filesystem::create_directories(frames, error);
-        if (error) {
-            throw IoError(frames.string() + ": cannot create directory (" + error.message() + ")");
-        }
+        create_frames_directory(frames);
         write_mesh(frames / frame_name(0), loaded.mesh, {.ply_precision = PlyPrecision::Float});
     }
     if (options.lambda > 0) {

@@ -216,7 +216,7 @@ SourceSums sum_source(const Side& source, const Side& target, const Parameters& 
 #pragma omp parallel reduction(+ : pairs) if (count > kParallelThreshold)
     {
         Neighbours found;
-#pragma omp for schedule(dynamic, 128)
+#pragma omp for schedule(static, 128)
         for (std::size_t slot = 0; slot < queries; ++slot) {
             const std::uint32_t i =
                 source.active[source.grid->id(static_cast<std::uint32_t>(slot))];
@@ -298,7 +298,7 @@ TargetSums sum_target(const Side& target, const Side& source, const Parameters& 
         Neighbours found;
         auto& kept = work.kept[static_cast<std::size_t>(thread_id())];
         auto& redone = work.redone[static_cast<std::size_t>(thread_id())];
-#pragma omp for schedule(dynamic, 128)
+#pragma omp for schedule(static, 128)
         for (std::size_t slot = 0; slot < queries; ++slot) {
             const std::uint32_t j =
                 target.active[target.grid->id(static_cast<std::uint32_t>(slot))];
@@ -428,7 +428,7 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
         Neighbours found;
         std::vector<TargetTerm> again;
         for (const auto& redone : work.redone) {
-#pragma omp for schedule(dynamic, 128)
+#pragma omp for schedule(static, 128)
             for (std::size_t k = 0; k < redone.size(); ++k) {
                 again.clear();
                 append_target_terms(target, source, p, redone[k], found, again);

@@ -74,8 +74,8 @@ FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy, Metr
         const double largest = g.rowwise().norm().maxCoeff();
         if (!std::isfinite(slope) || !std::isfinite(largest)) {
             result.status = FlowStatus::NonFinite;
-            result.message = "gradient_descent: non-finite gradient at step " +
-                             std::to_string(result.steps + 1);
+            result.message =
+                "gradient_descent: non-finite gradient at step " + std::to_string(result.steps + 1);
             break;
         }
         if (!(slope > 0) || !(largest > 0)) {
@@ -90,7 +90,9 @@ FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy, Metr
         for (int halving = 0; halving <= kMaxHalvings; ++halving, tau /= 2) {
             trial.V = result.mesh.V - tau * g;
             trial_value = energy.value(trial);
-            if (std::isfinite(trial_value) && trial_value <= value - kArmijo * tau * slope) {
+            // Strictly lower, too: a step too small to change E in floating point is no step.
+            if (std::isfinite(trial_value) && trial_value <= value - kArmijo * tau * slope &&
+                trial_value < value) {
                 accepted = true;
                 break;
             }

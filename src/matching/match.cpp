@@ -4,10 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <numeric>
 
 #include "genflow/energies/pseudo_hausdorff_energy.h"
 #include "genflow/exceptions.h"
 #include "genflow/flows/gradient_descent.h"
+#include "genflow/matching/multiresolution.h"
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/mesh_size.h"
@@ -23,12 +25,15 @@ const char* to_string(MatchPrior prior) {
             return "h1";
         case MatchPrior::Rigid:
             return "rigid";
+        case MatchPrior::Articulated:
+            return "articulated";
     }
     return "unknown";
 }
 
 std::optional<MatchPrior> parse_match_prior(const std::string& name) {
-    for (const MatchPrior prior : {MatchPrior::L2, MatchPrior::H1, MatchPrior::Rigid}) {
+    for (const MatchPrior prior :
+         {MatchPrior::L2, MatchPrior::H1, MatchPrior::Rigid, MatchPrior::Articulated}) {
         if (name == to_string(prior)) {
             return prior;
         }
@@ -51,14 +56,25 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
     }
     if (options.max_iterations < 0 || !detail::finite_above(options.max_step, 0) ||
         !detail::finite_at_least(options.stagnation_tolerance, 0) ||
-        options.alignment_candidates < 1 || !detail::finite_above(options.h1_length, 0)) {
+        options.alignment_candidates < 1 || !detail::finite_above(options.h1_length, 0) ||
+        options.fine_iterations < 0 || options.levels < 0 || options.coarse_vertices < 100 ||
+        options.selection_iterations < 0) {
         throw InvalidInput(
-            "match: need max_iterations >= 0, max_step > 0, stagnation_tolerance >= 0, "
-            "alignment_candidates >= 1 and h1_length > 0");
+            "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
+            "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0 "
+            "and coarse_vertices >= 100");
+    }
+    if (options.prior == MatchPrior::Articulated) {
+        if (!options.parts) {
+            throw InvalidInput("match: the articulated prior needs a part model");
+        }
+        check_part_model(*options.parts, template_mesh.V.rows());
     }
 }
 
-std::unique_ptr<Metric> make_metric(const MatchOptions& options, const TriangleMesh& template_mesh) {
+// `parts`: the level's part model, joint centres at the positions of `template_mesh`.
+std::unique_ptr<Metric> make_metric(const MatchOptions& options, const TriangleMesh& template_mesh,
+                                    const PartModel* parts) {
     switch (options.prior) {
         case MatchPrior::L2:
             return std::make_unique<L2Metric>();
@@ -68,8 +84,74 @@ std::unique_ptr<Metric> make_metric(const MatchOptions& options, const TriangleM
         }
         case MatchPrior::Rigid:
             return std::make_unique<SubspaceMetric>(quasi_rigid_metric(options.rigid));
+        case MatchPrior::Articulated:
+            return std::make_unique<SubspaceMetric>(
+                quasi_articulated_metric(template_mesh, *parts, options.articulated));
     }
     throw InvalidInput("match: unknown prior");
+}
+
+}  // namespace
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// Template and target at one resolution; `embedding` places this level's template in the
+// next coarser one (empty on the coarsest).
+struct Level {
+    TriangleMesh template_mesh;
+    TriangleMesh target;
+    Embedding embedding;
+    std::vector<Eigen::Index> original_vertex;  // template vertex of each level vertex
+};
+
+// Finest first. The template levels are nested (each coarsened from the previous), so their
+// vertices are subsets of the finer ones; each target level has about as many vertices as
+// the template level.
+std::vector<Level> build_pyramid(const TriangleMesh& template_mesh, const TriangleMesh& target,
+                                 const MatchOptions& options) {
+    int count = options.levels;
+    if (count <= 0) {
+        count = 1;
+        for (double n = static_cast<double>(template_mesh.V.rows());
+             n > 1.5 * static_cast<double>(options.coarse_vertices); n /= 4) {
+            ++count;
+        }
+    }
+    std::vector<Eigen::Index> identity(static_cast<std::size_t>(template_mesh.V.rows()));
+    std::iota(identity.begin(), identity.end(), 0);
+    std::vector<Level> levels{{template_mesh, target, {}, identity}};
+    for (int l = 1; l < count; ++l) {
+        const Level& finer = levels.back();
+        const Eigen::Index size = std::max<Eigen::Index>(finer.template_mesh.V.rows() / 4, 100);
+        Level coarser;
+        CoarseMesh coarse = coarsen(finer.template_mesh, size);
+        coarser.template_mesh = std::move(coarse.mesh);
+        for (const Eigen::Index v : coarse.fine_vertex) {
+            coarser.original_vertex.push_back(finer.original_vertex[static_cast<std::size_t>(v)]);
+        }
+        const double ratio = static_cast<double>(coarser.template_mesh.V.rows()) /
+                             static_cast<double>(template_mesh.V.rows());
+        coarser.target =
+            coarsen(
+                target,
+                std::max<Eigen::Index>(
+                    static_cast<Eigen::Index>(ratio * static_cast<double>(target.V.rows())), 100))
+                .mesh;
+        levels.back().embedding = embed(finer.template_mesh, coarser.template_mesh);
+        levels.push_back(std::move(coarser));
+    }
+    return levels;
+}
+
+// The embedding of a template level after the similarity: offsets scale and rotate with it.
+Embedding moved_embedding(const Embedding& embedding, const Similarity& similarity) {
+    Embedding moved = embedding;
+    moved.offset = similarity.scale * embedding.offset * similarity.rotation.transpose();
+    return moved;
 }
 
 }  // namespace
@@ -77,21 +159,17 @@ std::unique_ptr<Metric> make_metric(const MatchOptions& options, const TriangleM
 MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                   const MatchOptions& options) {
     check_inputs(template_mesh, target, options);
-    const PseudoHausdorffEnergy energy(
-        target, {.alpha = options.alpha,
-                 .epsilon = mean_edge_length(target),
-                 .truncation = options.truncation});
+    const auto start = std::chrono::steady_clock::now();
     const double diagonal = bounding_box_diagonal(target);
-
     MatchResult result;
+
     std::vector<Similarity> starts{Similarity{}};
-    auto clock = std::chrono::steady_clock::now();
-    const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    };
     if (options.align) {
         RigidAlignmentOptions alignment = options.alignment;
         alignment.best_starts = std::max(alignment.best_starts, options.alignment_candidates);
+        if (options.alignment_candidates > 1) {
+            alignment.refine_iterations = 0;  // the flows below decide; refining merges starts
+        }
         starts.clear();
         for (const RigidAlignment& candidate :
              rigid_alignment_candidates(template_mesh, target, alignment)) {
@@ -101,40 +179,117 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             }
         }
     }
-    result.alignment_seconds = seconds_since(clock);
+    result.alignment_seconds = seconds_since(start);
 
-    clock = std::chrono::steady_clock::now();
-    bool first = true;
-    for (const Similarity& start : starts) {
-        TriangleMesh moved = template_mesh;
-        moved.V = start.apply(template_mesh.V);
-        const std::unique_ptr<Metric> metric = make_metric(options, moved);
+    auto clock = std::chrono::steady_clock::now();
+    const std::vector<Level> pyramid = build_pyramid(template_mesh, target, options);
+    const int count = static_cast<int>(pyramid.size());
+    const double pyramid_seconds = seconds_since(clock);
+
+    bool cancelled = false;
+    // The flow of one level from `moved` (the template level's vertices, already placed).
+    // `placement`: the similarity that took the template level to `moved`'s rest frame.
+    const auto flow_level = [&](int l, const TriangleMesh& moved, int iterations,
+                                const Similarity& placement) {
+        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const PseudoHausdorffEnergy energy(level.target, {.alpha = options.alpha,
+                                                          .epsilon = mean_edge_length(level.target),
+                                                          .truncation = options.truncation});
+        std::optional<PartModel> parts;
+        if (options.parts) {  // this level's weights, joints moved with the template
+            parts = restrict_to(*options.parts, level.original_vertex);
+            for (Part& part : parts->parts) {
+                part.joint_centre = placement.apply(part.joint_centre.transpose()).transpose();
+            }
+        }
+        TriangleMesh rest = level.template_mesh;  // where the joint centres are bound
+        rest.V = placement.apply(rest.V);
+        const std::unique_ptr<Metric> metric =
+            make_metric(options, rest, parts ? &*parts : nullptr);
         DescentOptions descent{.max_displacement = options.max_step * diagonal,
-                               .max_steps = options.max_iterations,
+                               .max_steps = iterations,
                                .stagnation_tolerance = options.stagnation_tolerance,
                                .stagnation_window = 20};
         if (options.progress) {
-            descent.progress = [&](const FlowProgress& p) {
-                return options.progress(
-                    {to_string(options.prior), p.step, p.max_steps, p.energy, p.mesh});
+            descent.progress = [&, l](const FlowProgress& p) {
+                const bool go_on =
+                    options.progress({l, count, p.step, p.max_steps, p.energy, p.mesh});
+                cancelled = cancelled || !go_on;
+                return go_on;
             };
         }
-        FlowResult flow = gradient_descent(moved, energy, *metric, descent);
-        const double value = flow.energy.back();
-        if (first || value < result.hausdorff_energy) {
-            result.deformed = std::move(flow.mesh);
-            result.initial_alignment = start;
-            result.iterations = flow.steps;
-            result.status = flow.status;
-            result.hausdorff_energy = value;
-            result.energy = std::move(flow.energy);
+        return gradient_descent(moved, energy, *metric, descent);
+    };
+    const auto report = [](const TriangleMesh& mesh, const Level& level, const FlowResult& flow,
+                           double seconds) {
+        return MatchLevel{mesh.V.rows(),       level.target.V.rows(), flow.steps, flow.status,
+                          flow.energy.front(), flow.energy.back(),    seconds};
+    };
+
+    // The coarsest level. With several rigid starts, each flows `selection_iterations` steps
+    // with the prior and the lowest d_H goes on: a rigid fit alone can prefer a flipped pose
+    // of an articulated shape, a flow that may bend cannot.
+    clock = std::chrono::steady_clock::now();
+    const Level& coarsest = pyramid.back();
+    FlowResult best;
+    Similarity best_start;
+    const int first_iterations =
+        starts.size() > 1 ? std::min(options.selection_iterations, options.max_iterations)
+                          : options.max_iterations;
+    for (const Similarity& similarity : starts) {
+        TriangleMesh moved = coarsest.template_mesh;
+        moved.V = similarity.apply(moved.V);
+        FlowResult flow = flow_level(count - 1, moved, first_iterations, similarity);
+        if (best.energy.empty() || flow.energy.back() < best.energy.back()) {
+            best = std::move(flow);
+            best_start = similarity;
         }
-        first = false;
-        if (flow.status == FlowStatus::Cancelled) {
+        if (cancelled) {
             break;
         }
     }
-    result.flow_seconds = seconds_since(clock);
+    if (starts.size() > 1 && !cancelled && best.status != FlowStatus::Converged &&
+        options.max_iterations > first_iterations) {
+        FlowResult more =
+            flow_level(count - 1, best.mesh, options.max_iterations - first_iterations, best_start);
+        more.steps += best.steps;
+        more.energy.insert(more.energy.begin(), best.energy.begin(), best.energy.end() - 1);
+        best = std::move(more);
+    }
+    result.initial_alignment = best_start;
+    result.levels.push_back(
+        report(best.mesh, coarsest, best, pyramid_seconds + seconds_since(clock)));
+
+    // Finer levels: transfer, then a short flow.
+    TriangleMesh current = std::move(best.mesh);
+    for (int l = count - 2; l >= 0 && !cancelled; --l) {
+        clock = std::chrono::steady_clock::now();
+        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        TriangleMesh rest = level.template_mesh;
+        rest.V = best_start.apply(rest.V);
+        TriangleMesh coarse_rest = pyramid[static_cast<std::size_t>(l + 1)].template_mesh;
+        coarse_rest.V = best_start.apply(coarse_rest.V);
+        const TriangleMesh moved =
+            transfer(rest, coarse_rest, current.V, moved_embedding(level.embedding, best_start));
+        FlowResult flow = flow_level(l, moved, options.fine_iterations, best_start);
+        result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));
+        current = std::move(flow.mesh);
+    }
+    if (cancelled && static_cast<int>(result.levels.size()) < count) {
+        // Carry the last result up to the input's resolution so the output keeps its vertices.
+        for (int l = count - static_cast<int>(result.levels.size()) - 1; l >= 0; --l) {
+            const Level& level = pyramid[static_cast<std::size_t>(l)];
+            TriangleMesh rest = level.template_mesh;
+            rest.V = best_start.apply(rest.V);
+            TriangleMesh coarse_rest = pyramid[static_cast<std::size_t>(l + 1)].template_mesh;
+            coarse_rest.V = best_start.apply(coarse_rest.V);
+            current = transfer(rest, coarse_rest, current.V,
+                               moved_embedding(level.embedding, best_start));
+        }
+    }
+    result.deformed = TriangleMesh{current.V, template_mesh.F};
+    result.hausdorff_energy = result.levels.back().energy_end;
+    result.seconds = seconds_since(start);
     return result;
 }
 

@@ -44,8 +44,7 @@ CoarseMesh coarsen(const TriangleMesh& mesh, Eigen::Index target_vertices) {
     if (target_vertices < 4) {
         throw InvalidInput("coarsen: target_vertices must be at least 4");
     }
-    const Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> positions =
-        mesh.V.cast<float>();
+    const Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> positions = mesh.V.cast<float>();
     const Eigen::Matrix<unsigned, Eigen::Dynamic, 3, Eigen::RowMajor> faces =
         mesh.F.cast<unsigned>();
     // A closed triangle mesh has about twice as many faces as vertices.
@@ -189,14 +188,16 @@ TriangleMesh transfer(const TriangleMesh& fine_rest, const TriangleMesh& coarse_
             const int b = coarse_rest.F(f, (c + 1) % 3);
             // Each directed edge once per face: both ends see the other.
             const Eigen::Vector3d rest = (coarse_rest.V.row(b) - coarse_rest.V.row(a)).transpose();
-            const Eigen::Vector3d moved = (coarse_deformed.row(b) - coarse_deformed.row(a)).transpose();
+            const Eigen::Vector3d moved =
+                (coarse_deformed.row(b) - coarse_deformed.row(a)).transpose();
             covariance[static_cast<std::size_t>(a)] += moved * rest.transpose();
             covariance[static_cast<std::size_t>(b)] += moved * rest.transpose();
         }
     }
     std::vector<Eigen::Matrix3d> rotation(static_cast<std::size_t>(m));
     for (Eigen::Index b = 0; b < m; ++b) {
-        rotation[static_cast<std::size_t>(b)] = polar_rotation(covariance[static_cast<std::size_t>(b)]);
+        rotation[static_cast<std::size_t>(b)] =
+            polar_rotation(covariance[static_cast<std::size_t>(b)]);
     }
     TriangleMesh result = fine_rest;
     for (Eigen::Index i = 0; i < n; ++i) {

@@ -52,15 +52,17 @@ Samples cluster(const TriangleMesh& mesh, int count) {
             continue;
         }
         const Eigen::Array3d cell = ((mesh.V.row(i) - origin) / side).array().floor().transpose();
-        const std::int64_t key = (static_cast<std::int64_t>(cell.x()) * 2097152 +
-                                  static_cast<std::int64_t>(cell.y())) *
-                                     2097152 +
-                                 static_cast<std::int64_t>(cell.z());
-        const auto [it, inserted] = cell_of.try_emplace(key, static_cast<Eigen::Index>(sums.size()));
+        const std::int64_t key =
+            (static_cast<std::int64_t>(cell.x()) * 2097152 + static_cast<std::int64_t>(cell.y())) *
+                2097152 +
+            static_cast<std::int64_t>(cell.z());
+        const auto [it, inserted] =
+            cell_of.try_emplace(key, static_cast<Eigen::Index>(sums.size()));
         if (inserted) {
             sums.emplace_back(Eigen::Vector4d::Zero());
         }
-        sums[static_cast<std::size_t>(it->second)].head<3>() += masses[i] * mesh.V.row(i).transpose();
+        sums[static_cast<std::size_t>(it->second)].head<3>() +=
+            masses[i] * mesh.V.row(i).transpose();
         sums[static_cast<std::size_t>(it->second)][3] += masses[i];
     }
     Samples samples{Eigen::MatrixX3d(static_cast<Eigen::Index>(sums.size()), 3),
@@ -104,7 +106,9 @@ public:
               double max_displacement)
         : moving_(moving),
           fixed_(fixed),
-          options_{.alpha = options.alpha, .epsilon = fixed.spacing, .truncation = 1e-4,
+          options_{.alpha = options.alpha,
+                   .epsilon = fixed.spacing,
+                   .truncation = 1e-4,
                    .weights = HausdorffWeights::Normalized},
           scaling_(false),
           stagnation_(options.stagnation_tolerance),
@@ -188,9 +192,9 @@ private:
                      const Eigen::VectorXd& delta, double tau) const {
         const Eigen::Vector3d omega = -tau * delta.segment<3>(3);
         const double angle = omega.norm();
-        const Eigen::Matrix3d Q =
-            angle > 0 ? Eigen::AngleAxisd(angle, omega / angle).toRotationMatrix()
-                      : Eigen::Matrix3d::Identity();
+        const Eigen::Matrix3d Q = angle > 0
+                                      ? Eigen::AngleAxisd(angle, omega / angle).toRotationMatrix()
+                                      : Eigen::Matrix3d::Identity();
         const double grow = scaling_ ? std::exp(-tau * delta[6]) : 1.0;
         Similarity result;
         result.scale = grow * t.scale;
@@ -234,8 +238,7 @@ std::vector<RigidAlignment> rigid_alignment_candidates(const TriangleMesh& movin
     const double scale = options.allow_scaling ? std::sqrt(b.masses.sum() / a.masses.sum()) : 1.0;
     const Frame fa = principal_frame(a);
     const Frame fb = principal_frame(b);
-    const double diagonal =
-        (b.points.colwise().maxCoeff() - b.points.colwise().minCoeff()).norm();
+    const double diagonal = (b.points.colwise().maxCoeff() - b.points.colwise().minCoeff()).norm();
     const RigidFlow flow(a, b, options, 0.05 * diagonal);
 
     // The 24 proper rotations taking a's principal axes onto b's, in every order and sign.

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "genflow/mesh/primitives.h"
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -138,6 +140,68 @@ TriangleMesh add_noise(TriangleMesh mesh, double sigma, std::uint64_t seed) {
         }
     }
     return mesh;
+}
+
+TriangleMesh make_ellipsoid(int level, const Eigen::Vector3d& radii, std::uint64_t sampling_seed) {
+    if (!detail::finite_above(radii.x(), 0) || !detail::finite_above(radii.y(), 0) ||
+        !detail::finite_above(radii.z(), 0)) {
+        throw InvalidInput("make_ellipsoid: radii must be positive and finite");
+    }
+    TriangleMesh mesh = make_icosphere(level);
+    if (sampling_seed != 0) {
+        std::mt19937_64 generator(sampling_seed);
+        std::normal_distribution<double> normal(0.0, 1.0);
+        Eigen::Quaterniond q(normal(generator), normal(generator), normal(generator),
+                             normal(generator));
+        q.normalize();
+        mesh.V = mesh.V * q.toRotationMatrix().transpose();
+    }
+    mesh.V = mesh.V * radii.asDiagonal();
+    return mesh;
+}
+
+TriangleMesh make_limb(int level, std::uint64_t sampling_seed) {
+    TriangleMesh mesh = make_ellipsoid(level, {3, 0.55, 0.45}, sampling_seed);
+    const Eigen::Vector3d hump = Eigen::Vector3d(0.75, 0.66, 0).normalized();
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        // A hump on top of the +x end, found through the direction on the unit sphere.
+        const Eigen::Vector3d n =
+            mesh.V.row(i).transpose().cwiseQuotient(Eigen::Vector3d(3, 0.55, 0.45));
+        mesh.V.row(i) *= 1 + 0.5 * std::exp((n.normalized().dot(hump) - 1) / 0.03);
+        const double u = std::clamp(mesh.V(i, 0) / 3, -1.0, 1.0);  // along the shape
+        mesh.V(i, 1) = mesh.V(i, 1) * (1 + 0.3 * u) - 0.25 * u * u;
+        mesh.V(i, 2) = mesh.V(i, 2) * (1 + 0.2 * u);
+    }
+    return mesh;
+}
+
+Eigen::MatrixX3d bend_at_joints(const Eigen::MatrixX3d& points, const std::vector<Joint>& joints) {
+    Eigen::MatrixX3d posed = points;
+    for (const Joint& joint : joints) {
+        const bool finite = joint.centre.allFinite() && joint.direction.allFinite() &&
+                            joint.axis.allFinite() && std::isfinite(joint.angle);
+        if (!finite || !(joint.direction.norm() > 0) || !(joint.axis.norm() > 0) ||
+            !detail::finite_above(joint.width, 0)) {
+            throw InvalidInput(
+                "bend_at_joints: a joint needs finite values, a non-zero direction and axis and "
+                "a positive width");
+        }
+        const Eigen::Vector3d direction = joint.direction.normalized();
+        const Eigen::Vector3d axis = joint.axis.normalized();
+        for (Eigen::Index i = 0; i < points.rows(); ++i) {
+            const Eigen::Vector3d rest = points.row(i).transpose();
+            const double t =
+                std::clamp(0.5 + 0.5 * direction.dot(rest - joint.centre) / joint.width, 0.0, 1.0);
+            const double blend = t * t * (3 - 2 * t);
+            if (blend == 0) {
+                continue;
+            }
+            const Eigen::AngleAxisd turn(blend * joint.angle, axis);
+            posed.row(i) =
+                (joint.centre + turn * (posed.row(i).transpose() - joint.centre)).transpose();
+        }
+    }
+    return posed;
 }
 
 }  // namespace genflow

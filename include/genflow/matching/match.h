@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "genflow/flows/flow.h"
+#include "genflow/matching/articulated_prior.h"
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh.h"
 #include "genflow/metrics/subspace_metric.h"
@@ -15,19 +16,21 @@ namespace genflow {
 
 /// The deformation prior of a match: the metric in which the template flows (paper §6.3).
 enum class MatchPrior {
-    L2,     ///< plain L2: the baseline that slides and tears (paper Fig. 3)
-    H1,     ///< Sobolev H1: smooth, but no notion of rigidity
-    Rigid,  ///< quasi-rigid (paper eq. 16, SPEC.md §5): rigid motion and scaling are cheap
+    L2,           ///< plain L2: the baseline that slides and tears (paper Fig. 3)
+    H1,           ///< Sobolev H1: smooth, but no notion of rigidity
+    Rigid,        ///< quasi-rigid (paper eq. 16, SPEC.md §5): rigid motion and scaling are cheap
+    Articulated,  ///< quasi-articulated (SPEC.md §6): needs MatchOptions::parts
 };
 
-/// "l2", "h1", "rigid".
+/// "l2", "h1", "rigid", "articulated".
 [[nodiscard]] const char* to_string(MatchPrior prior);
 /// The prior named by `name` (as to_string() spells it), or nothing.
 [[nodiscard]] std::optional<MatchPrior> parse_match_prior(const std::string& name);
 
 /// What the progress callback sees after every accepted step.
 struct MatchProgress {
-    std::string stage;  ///< "align", or the prior's name while flowing
+    int level = 0;  ///< 0 is the finest; levels − 1 the coarsest
+    int levels = 1;
     int step = 0;
     int max_steps = 0;
     double energy = 0;                   ///< d_H after this step
@@ -37,54 +40,84 @@ struct MatchProgress {
 /// Parameters of match(). Every length is relative to the meshes, so the defaults need no
 /// tuning per pair (issue 5: scale-free parameters).
 struct MatchOptions {
-    MatchPrior prior = MatchPrior::Rigid;
-    /// Exponent α of the pseudo-Hausdorff distance and its truncation τ (PseudoHausdorffOptions);
+    MatchPrior prior = MatchPrior::H1;
+    /// Exponent α of the pseudo-Hausdorff distance and its truncation τ (PseudoHausdorffOptions:
+    /// the relative error of d_H is then below τ/(2α) = 6e-4, far below what a flow notices);
     /// ε is the target's mean edge length (SPEC.md §8: smaller makes vertices snap
     /// tangentially).
     double alpha = 8;
-    double truncation = 1e-4;
-    /// At most this many steps of the flow.
+    double truncation = 1e-2;
+    /// Multiresolution (paper §6.4, SPEC.md §9): the flow runs on QEM-coarsened template and
+    /// target first, then on finer levels, each started from the coarser result carried over by
+    /// rotation-interpolated offsets. `levels` = 0 chooses them: the coarsest has about
+    /// `coarse_vertices`, each finer one 4× more, up to the input.
+    int levels = 0;
+    Eigen::Index coarse_vertices = 1000;
+    /// At most this many steps on the coarsest level, and on each finer one.
     int max_iterations = 300;
+    int fine_iterations = 40;
     /// No vertex moves farther than this fraction of the target's bounding-box diagonal in one
     /// step (SPEC.md §9: 2 %).
     double max_step = 0.02;
     /// Converged when d_H fell by less than this fraction over the last 20 steps.
-    double stagnation_tolerance = 1e-4;
-    /// Start from a global rigid alignment (so inputs need no pre-alignment); with several
-    /// distinct rigid optima, the best `alignment_candidates` are each flowed and the lowest
-    /// final d_H wins.
+    double stagnation_tolerance = 1e-3;
+    /// Start from a global rigid alignment (so inputs need no pre-alignment). The best
+    /// `alignment_candidates` distinct rigid starts each flow `selection_iterations` steps on
+    /// the coarsest level and the lowest d_H goes on: between articulated poses the best rigid
+    /// fit is often a flipped one (the TOSCA cat; the generated limb bent by 70°), which a flow
+    /// that can bend does not prefer.
     bool align = true;
     int alignment_candidates = 1;
+    int selection_iterations = 300;
     RigidAlignmentOptions alignment;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
+    /// The template's parts (required by the articulated prior; joint centres in the
+    /// template's own frame), and the prior's penalties.
+    std::optional<PartModel> parts;
+    QuasiArticulatedOptions articulated;
     /// H1 smoothing length as a multiple of the template's mean edge length: λ = (k·h)².
     double h1_length = 5;
     /// Called after every step; return false to stop. Optional.
     std::function<bool(const MatchProgress&)> progress = {};
 };
 
+/// One level of a match, coarsest first in MatchResult::levels.
+struct MatchLevel {
+    Eigen::Index template_vertices = 0;
+    Eigen::Index target_vertices = 0;
+    int iterations = 0;
+    FlowStatus status = FlowStatus::MaxSteps;
+    double energy_start = 0;  ///< d_H at the start of the level's flow
+    double energy_end = 0;
+    double seconds = 0;  ///< pyramid, transfer and flow of this level
+};
+
 /// What match() did, for the report.
 struct MatchResult {
-    TriangleMesh deformed;          ///< the template, deformed (its connectivity unchanged)
-    Similarity initial_alignment;   ///< the rigid start (identity without `align`)
-    int iterations = 0;             ///< flow steps
-    FlowStatus status = FlowStatus::MaxSteps;
-    double hausdorff_energy = 0;    ///< final d_H
-    std::vector<double> energy;     ///< d_H after alignment and after every step
+    TriangleMesh deformed;           ///< the template, deformed (its connectivity unchanged)
+    Similarity initial_alignment;    ///< the rigid start (identity without `align`)
+    std::vector<MatchLevel> levels;  ///< coarsest first
+    double hausdorff_energy = 0;     ///< final d_H on the finest level
     double alignment_seconds = 0;
-    double flow_seconds = 0;
-    /// True if the flow stopped on its own (stagnation or no descent left), not on a limit.
-    [[nodiscard]] bool converged() const { return status == FlowStatus::Converged; }
+    double seconds = 0;  ///< everything
+    /// True if the finest level's flow stopped on its own (stagnation or no descent left).
+    [[nodiscard]] bool converged() const {
+        return !levels.empty() && levels.back().status == FlowStatus::Converged;
+    }
 };
 
 /// Deforms `template_mesh` onto `target` (another pose of the same subject, any sampling and
 /// connectivity) by the flow of the pseudo-Hausdorff distance in the metric of the prior
-/// (paper eq. 14): optional global rigid alignment (align_rigidly()), then steepest descent
-/// with Armijo backtracking and a displacement cap (gradient_descent()).
+/// (paper eq. 14): optional global rigid alignment (rigid_alignment_candidates(); with several
+/// candidates, each is flowed on the coarsest level and the lowest d_H is kept), then, from
+/// the coarsest level to the input, steepest descent with Armijo backtracking and a
+/// displacement cap (gradient_descent()), each level started from the coarser one by
+/// transfer(). ε is the mean edge length of each level's target.
 ///
 /// \throws InvalidInput if a mesh is empty, has no face, zero area, bad indices or non-finite
-///         coordinates, or an option is out of range.
+///         coordinates, an option is out of range, or the articulated prior lacks a part
+///         model that fits the template.
 [[nodiscard]] MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                                 const MatchOptions& options = {});
 

@@ -24,7 +24,7 @@ struct Similarity {
 /// from the meshes.
 struct RigidAlignmentOptions {
     /// Each mesh is reduced to about this many area-weighted points (voxel clusters).
-    int samples = 400;
+    int samples = 150;
     /// Iterations of the rigid flow for every one of the 24 starts, then for the best few
     /// distinct ones (rotations at least 30° apart).
     int start_iterations = 10;
@@ -43,8 +43,8 @@ struct RigidAlignmentOptions {
 
 /// What align_rigidly() found.
 struct RigidAlignment {
-    Similarity transform;      ///< maps `moving` onto `fixed`
-    double hausdorff_energy;   ///< d_H between the aligned samples
+    Similarity transform;     ///< maps `moving` onto `fixed`
+    double hausdorff_energy;  ///< d_H between the aligned samples
 };
 
 /// Aligns `moving` to `fixed` up to a rotation, translation and (optionally) scaling, without

@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: MIT
+#include "match_job.h"
+
+#include "cli_support.h"
+#include "genflow/exceptions.h"
+#include "genflow/io/atomic_file.h"
+#include "genflow/io/write_mesh.h"
+#include "genflow/matching/correspondence.h"
+#include "genflow/operators/mesh_size.h"
+#include "genflow/spatial/surface_distance.h"
+#include "progress_bar.h"
+
+namespace genflow::cli {
+
+nlohmann::json run_match_job(MatchJob job) {
+    int frame = 0;
+    if (job.frames) {
+        create_frames_directory(*job.frames);
+    }
+    ProgressBar bar("match", job.progress_bar);
+    job.options.progress = [&](const MatchProgress& p) {
+        bar.update(p.step, p.max_steps,
+                   "level " + std::to_string(p.levels - p.level) + "/" + std::to_string(p.levels) +
+                       ", d_H " + std::to_string(p.energy));
+        if (job.frames) {
+            write_mesh(*job.frames / frame_name(frame++), *p.mesh,
+                       {.ply_precision = PlyPrecision::Float});
+        }
+        return true;
+    };
+    const MatchResult result = match(job.template_mesh, job.target, job.options);
+    bar.finish();
+
+    const SurfaceDistances distances = surface_distances(result.deformed, job.target);
+    const double diagonal = bounding_box_diagonal(job.target);
+    nlohmann::json levels = nlohmann::json::array();
+    for (const MatchLevel& level : result.levels) {
+        levels.push_back({{"template_vertices", level.template_vertices},
+                          {"target_vertices", level.target_vertices},
+                          {"iterations", level.iterations},
+                          {"status", to_string(level.status)},
+                          {"pseudo_hausdorff_start", level.energy_start},
+                          {"pseudo_hausdorff_end", level.energy_end},
+                          {"seconds", level.seconds}});
+    }
+    const Eigen::Matrix4d alignment = result.initial_alignment.matrix();
+    nlohmann::json summary = {
+        {"template", job.template_name},
+        {"target", job.target_name},
+        {"output", job.output.string()},
+        {"prior", to_string(job.options.prior)},
+        {"converged", result.converged()},
+        {"levels", levels},
+        {"alignment_seconds", result.alignment_seconds},
+        {"seconds", result.seconds},
+        {"initial_alignment",
+         {{alignment(0, 0), alignment(0, 1), alignment(0, 2), alignment(0, 3)},
+          {alignment(1, 0), alignment(1, 1), alignment(1, 2), alignment(1, 3)},
+          {alignment(2, 0), alignment(2, 1), alignment(2, 2), alignment(2, 3)},
+          {0, 0, 0, 1}}},
+        {"pseudo_hausdorff", result.hausdorff_energy},
+        {"hausdorff", distances.hausdorff},
+        {"mean_distance", distances.mean},
+        {"target_bbox_diagonal", diagonal},
+        {"hausdorff_over_diagonal", distances.hausdorff / diagonal},
+        {"mean_distance_over_diagonal", distances.mean / diagonal},
+    };
+    if (job.ground_truth) {
+        const Eigen::VectorXd error =
+            (result.deformed.V - *job.ground_truth).rowwise().norm() / diagonal;
+        summary["correspondence_error_over_diagonal"] = {{"mean", error.mean()},
+                                                         {"max", error.maxCoeff()}};
+    }
+
+    write_mesh(job.output, result.deformed);
+    if (job.correspondence) {
+        write_correspondences(*job.correspondence, closest_points(result.deformed.V, job.target));
+        summary["correspondence"] = job.correspondence->string();
+    }
+    if (job.summary) {
+        write_file_atomically(*job.summary, summary.dump(2) + "\n");
+    }
+    return summary;
+}
+
+}  // namespace genflow::cli

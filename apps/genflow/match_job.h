@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+// One matching job as `genflow match` and `genflow demo` run it: match, then write the deformed
+// template, the correspondences, the frames and the JSON summary.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "genflow/matching/match.h"
+
+namespace genflow::cli {
+
+struct MatchJob {
+    TriangleMesh template_mesh;
+    TriangleMesh target;
+    std::string template_name;  ///< for the summary
+    std::string target_name;
+    std::filesystem::path output;                         ///< the deformed template
+    std::optional<std::filesystem::path> correspondence;  ///< per-vertex closest target points
+    std::optional<std::filesystem::path> frames;          ///< animation frames
+    std::optional<std::filesystem::path> summary;         ///< the JSON summary, as a file
+    /// Known positions of the template's vertices on the target (a generated pair): the
+    /// summary then reports the correspondence error.
+    std::optional<Eigen::MatrixX3d> ground_truth;
+    MatchOptions options;
+    bool progress_bar = true;
+};
+
+/// Runs the job and returns its summary (also written to job.summary when set). Outputs are
+/// written atomically, only after the match succeeded.
+nlohmann::json run_match_job(MatchJob job);
+
+}  // namespace genflow::cli

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// genflow match end to end on a generated pair, and its refusals.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/cli_runner.h"
+#include "genflow/io/read_mesh.h"
+#include "genflow/io/write_mesh.h"
+#include "genflow/matching/rigid_alignment.h"
+#include "genflow/mesh/primitives.h"
+
+namespace genflow {
+namespace {
+
+using test::quoted;
+using test::run_genflow;
+
+TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target = make_limb(4, 5);
+    Similarity motion;
+    motion.rotation = Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    motion.translation = Eigen::Vector3d(1, 2, 3);
+    target.V = motion.apply(target.V);
+    write_mesh(directory / "template.ply", template_mesh);
+    write_mesh(directory / "target.obj", target);
+    const auto result =
+        run_genflow("match " + quoted(directory / "template.ply") + " " +
+                    quoted(directory / "target.obj") + " -o " + quoted(directory / "out.ply") +
+                    " --prior rigid --iterations 60 --correspondence " +
+                    quoted(directory / "corr.txt") + " --frames " + quoted(directory / "frames") +
+                    " --summary " + quoted(directory / "summary.json") + " --json");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto json = nlohmann::json::parse(result.out);
+    EXPECT_EQ(json["prior"], "rigid");
+    EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
+    EXPECT_LT(json["hausdorff_over_diagonal"].get<double>(), 0.05);
+    EXPECT_EQ(json["levels"].size(), 1u);
+    const TriangleMesh out = read_mesh(directory / "out.ply");
+    EXPECT_EQ(out.F, template_mesh.F);
+    std::ifstream correspondences(directory / "corr.txt");
+    int lines = 0;
+    for (std::string line; std::getline(correspondences, line);) {
+        lines += line.empty() || line[0] == '#' ? 0 : 1;
+    }
+    EXPECT_EQ(lines, template_mesh.V.rows());
+    EXPECT_TRUE(std::filesystem::exists(directory / "frames" / "frame_00000.ply"));
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(directory / "summary.json")), json);
+}
+
+TEST(MatchCli, RefusesBadInputAndWritesNothing) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "limb.ply", make_limb(2));
+    {
+        std::ofstream nan(directory / "nan.obj");
+        nan << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+        std::ofstream empty(directory / "empty.obj");
+        // Three faces on one edge: not manifold.
+        std::ofstream fan(directory / "fan.obj");
+        fan << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+    }
+    const auto out = directory / "out.ply";
+    for (const char* bad : {"nan.obj", "empty.obj", "missing.ply"}) {
+        const auto as_target = run_genflow("match " + quoted(directory / "limb.ply") + " " +
+                                           quoted(directory / bad) + " -o " + quoted(out));
+        EXPECT_EQ(as_target.exit_code, 2) << bad;
+        EXPECT_NE(as_target.err.find(bad), std::string::npos) << as_target.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << bad;
+    }
+    const auto fan = run_genflow("match " + quoted(directory / "fan.obj") + " " +
+                                 quoted(directory / "limb.ply") + " -o " + quoted(out));
+    EXPECT_EQ(fan.exit_code, 2);
+    EXPECT_NE(fan.err.find("not manifold"), std::string::npos) << fan.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    const auto unknown_prior =
+        run_genflow("match " + quoted(directory / "limb.ply") + " " +
+                    quoted(directory / "limb.ply") + " -o " + quoted(out) + " --prior banana");
+    EXPECT_EQ(unknown_prior.exit_code, 2);
+}
+
+}  // namespace
+}  // namespace genflow

@@ -1,0 +1,259 @@
+// SPDX-License-Identifier: MIT
+// Shape matching: steepest descent with backtracking, rigid alignment, multiresolution,
+// the part model and the quasi-articulated prior, and match() end to end on generated pairs.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <numbers>
+
+#include "genflow/energies/pseudo_hausdorff_energy.h"
+#include "genflow/exceptions.h"
+#include "genflow/flows/gradient_descent.h"
+#include "genflow/matching/articulated_prior.h"
+#include "genflow/matching/correspondence.h"
+#include "genflow/matching/match.h"
+#include "genflow/matching/multiresolution.h"
+#include "genflow/mesh/primitives.h"
+#include "genflow/mesh/validate.h"
+#include "genflow/metrics/l2_metric.h"
+#include "genflow/operators/mesh_size.h"
+#include "support/test_meshes.h"
+
+namespace genflow {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180;
+
+Similarity some_similarity() {
+    Similarity s;
+    s.rotation = Eigen::AngleAxisd(2.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    s.translation = Eigen::Vector3d(3, -1, 2);
+    s.scale = 2.5;
+    return s;
+}
+
+TEST(GradientDescent, DecreasesTheEnergyAtEveryStepAndStops) {
+    const TriangleMesh target = make_limb(3, 5);
+    TriangleMesh moving = make_limb(3);
+    moving.V *= 1.1;
+    const PseudoHausdorffEnergy energy(target, {.alpha = 8, .epsilon = mean_edge_length(target)});
+    L2Metric metric;
+    const FlowResult result = gradient_descent(
+        moving, energy, metric,
+        {.max_displacement = 0.02 * bounding_box_diagonal(target), .max_steps = 200});
+    ASSERT_TRUE(result.ok());
+    ASSERT_GE(result.steps, 5);
+
+    for (std::size_t k = 1; k < result.energy.size(); ++k) {
+        EXPECT_LT(result.energy[k], result.energy[k - 1]) << k;
+    }
+    EXPECT_LT(result.energy.back(), 0.7 * result.energy.front());
+    EXPECT_EQ(result.status, FlowStatus::Converged);
+    EXPECT_THROW((void)gradient_descent(moving, energy, metric, {}), InvalidInput);
+}
+
+TEST(RigidAlignment, RecoversARotationTranslationAndScaleOfAnotherSampling) {
+    const TriangleMesh moving = make_limb(3);
+    TriangleMesh fixed = make_limb(4, 11);
+    const Similarity truth = some_similarity();
+    fixed.V = truth.apply(fixed.V);
+    const RigidAlignment found = align_rigidly(moving, fixed);
+    const double error =
+        (found.transform.apply(moving.V) - truth.apply(moving.V)).rowwise().norm().mean();
+    EXPECT_LT(error, 0.01 * bounding_box_diagonal(fixed));
+    EXPECT_NEAR(found.transform.scale, 2.5, 0.02);
+    EXPECT_LT((found.transform.rotation.transpose() * found.transform.rotation -
+               Eigen::Matrix3d::Identity())
+                  .norm(),
+              1e-12);
+}
+
+TEST(Multiresolution, CoarseVerticesAreASubsetAndTransferIsExactForRigidMotions) {
+    const TriangleMesh fine = make_limb(4, 3);
+    const CoarseMesh coarse = coarsen(fine, 600);
+    EXPECT_LT(coarse.mesh.V.rows(), 700);
+    EXPECT_GT(coarse.mesh.V.rows(), 500);
+    for (std::size_t k = 0; k < coarse.fine_vertex.size(); ++k) {
+        ASSERT_EQ(coarse.mesh.V.row(static_cast<Eigen::Index>(k)),
+                  fine.V.row(coarse.fine_vertex[k]));
+    }
+    const ValidationReport report = validate(coarse.mesh);
+    EXPECT_TRUE(report.manifold());
+    EXPECT_EQ(report.boundary_edges, 0);
+
+    const Embedding embedding = embed(fine, coarse.mesh);
+    const Similarity motion = some_similarity();
+    Similarity rigid = motion;
+    rigid.scale = 1;
+    const TriangleMesh moved = transfer(fine, coarse.mesh, rigid.apply(coarse.mesh.V), embedding);
+    EXPECT_LT((moved.V - rigid.apply(fine.V)).cwiseAbs().maxCoeff(), 1e-12);
+    // Unmoved, the fine mesh comes back exactly.
+    EXPECT_LT(
+        (transfer(fine, coarse.mesh, coarse.mesh.V, embedding).V - fine.V).cwiseAbs().maxCoeff(),
+        1e-12);
+}
+
+TEST(Multiresolution, TransferRotatesDetailsWithABend) {
+    // A bend of the coarse mesh: offsets turn with the surface, so the fine mesh follows the
+    // bent ground truth far better than displacement interpolation would.
+    // A rough surface: the offsets of the fine vertices from the coarse faces are its detail.
+    const TriangleMesh fine = add_noise(make_limb(4), 0.03, 2);
+    const CoarseMesh coarse = coarsen(fine, 500);
+    const std::vector<Joint> joint{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 60 * kDegree, 0.4}};
+    const TriangleMesh moved =
+        transfer(fine, coarse.mesh, bend_at_joints(coarse.mesh.V, joint), embed(fine, coarse.mesh));
+    const Eigen::MatrixX3d truth = bend_at_joints(fine.V, joint);
+    // Against naive interpolation of displacements (details do not turn): SPEC.md §9 measured
+    // 1.3 % against 79 % detail error in the rigid zones.
+    const Embedding embedding = embed(fine, coarse.mesh);
+    const Eigen::MatrixX3d bent_coarse = bend_at_joints(coarse.mesh.V, joint);
+    Eigen::MatrixX3d naive = fine.V;
+    for (Eigen::Index i = 0; i < fine.V.rows(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            const int b = coarse.mesh.F(embedding.face[i], c);
+            naive.row(i) +=
+                embedding.barycentric(i, c) * (bent_coarse.row(b) - coarse.mesh.V.row(b));
+        }
+    }
+    double error = 0;  // in the zone that turned rigidly, beyond the blend
+    double naive_error = 0;
+    for (Eigen::Index i = 0; i < fine.V.rows(); ++i) {
+        if (fine.V(i, 0) > 1.6) {
+            error = std::max(error, (moved.V.row(i) - truth.row(i)).norm());
+            naive_error = std::max(naive_error, (naive.row(i) - truth.row(i)).norm());
+        }
+    }
+    EXPECT_LT(error, 0.5 * naive_error);
+}
+
+PartModel two_part_arm(const TriangleMesh& mesh) {
+    PartModel model;
+    model.parts = {{"upper", -1, Eigen::Vector3d::Zero()},
+                   {"lower", 0, Eigen::Vector3d(1.0, 0, 0)}};
+    Eigen::VectorXi labels(mesh.V.rows());
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        labels[i] = mesh.V(i, 0) > 1.0 ? 1 : 0;
+    }
+    model.weights = weights_from_labels(labels, 2);
+    return model;
+}
+
+TEST(PartModel, RejectsModelsThatDoNotFit) {
+    const TriangleMesh mesh = make_limb(2);
+    PartModel model = two_part_arm(mesh);
+    EXPECT_NO_THROW(check_part_model(model, mesh.V.rows()));
+    EXPECT_THROW(check_part_model(model, mesh.V.rows() + 1), InvalidInput);  // wrong count
+    PartModel cycle = model;
+    cycle.parts[0].parent = 1;  // no root, a cycle
+    EXPECT_THROW(check_part_model(cycle, mesh.V.rows()), InvalidInput);
+    PartModel two_roots = model;
+    two_roots.parts[1].parent = -1;
+    EXPECT_THROW(check_part_model(two_roots, mesh.V.rows()), InvalidInput);
+    PartModel bad_sum = model;
+    bad_sum.weights(3, 0) = 0.5;
+    bad_sum.weights(3, 1) = 0.2;
+    EXPECT_THROW(check_part_model(bad_sum, mesh.V.rows()), InvalidInput);
+    EXPECT_THROW((void)weights_from_labels(Eigen::VectorXi::Constant(4, 2), 2), InvalidInput);
+}
+
+TEST(ArticulatedPrior, IsSPDAndBendsAtTheJoint) {
+    const TriangleMesh arm = make_limb(3);
+    const PartModel parts = two_part_arm(arm);
+    SubspaceMetric metric = quasi_articulated_metric(arm, parts);
+    metric.update(arm);
+    const VertexField U = test::noisy_icosphere(3, 0.3, 4).V.topRows(arm.V.rows());
+    EXPECT_LT(test::relative_error(metric.gradient(metric.apply(U)), U), 1e-10);
+    EXPECT_GT((U.array() * metric.apply(U).array()).sum(), 0);
+
+    // Bending the lower part about the joint is cheap (its metric norm is a small multiple
+    // of its L2 norm); a bulge of the middle, which no part motion explains, is not.
+    const auto cost = [&](const VertexField& v) {
+        const VertexField Mv = (v.array().colwise() * metric.masses().array()).matrix();
+        return (v.array() * metric.apply(v).array()).sum() / (v.array() * Mv.array()).sum();
+    };
+    VertexField bend(arm.V.rows(), 3);
+    VertexField bulge(arm.V.rows(), 3);
+    for (Eigen::Index i = 0; i < arm.V.rows(); ++i) {
+        const Eigen::Vector3d x = arm.V.row(i).transpose();
+        const double lower = std::clamp((x.x() - 0.8) / 0.4, 0.0, 1.0);
+        bend.row(i) = lower * Eigen::Vector3d::UnitZ().cross(x - Eigen::Vector3d(1, 0, 0));
+        bulge.row(i) = std::cos(x.x()) * Eigen::Vector3d(0, x.y(), x.z());
+    }
+    EXPECT_LT(cost(bend), 0.1);
+    EXPECT_GT(cost(bulge), 0.5);
+}
+
+TEST(Match, RecoversARigidlyMovedShapeFromAnyPose) {
+    const TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target = make_limb(4, 9);
+    const Similarity truth = some_similarity();
+    target.V = truth.apply(target.V);
+    MatchOptions options;
+    options.prior = MatchPrior::Rigid;
+    const MatchResult result = match(template_mesh, target, options);
+    const double error = (result.deformed.V - truth.apply(template_mesh.V)).rowwise().norm().mean();
+    EXPECT_LT(error, 0.01 * bounding_box_diagonal(target));
+    EXPECT_EQ(result.deformed.F, template_mesh.F);
+    ASSERT_FALSE(result.levels.empty());
+    EXPECT_LT(result.levels.back().energy_end, result.levels.back().energy_start);
+}
+
+TEST(Match, ArticulatedPriorFollowsABendTheRigidPriorCannot) {
+    const TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target = make_limb(4, 9);
+    const std::vector<Joint> bend{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}};
+    target.V = bend_at_joints(target.V, bend);
+    const Eigen::MatrixX3d truth = bend_at_joints(template_mesh.V, bend);
+    const double diagonal = bounding_box_diagonal(target);
+    const auto error = [&](const MatchResult& r) {
+        return (r.deformed.V - truth).rowwise().norm().mean() / diagonal;
+    };
+    MatchOptions options;
+    options.prior = MatchPrior::Articulated;
+    options.align = false;
+    options.parts = two_part_arm(template_mesh);
+    const MatchResult articulated = match(template_mesh, target, options);
+    options.prior = MatchPrior::Rigid;
+    const MatchResult rigid = match(template_mesh, target, options);
+    const double start = (template_mesh.V - truth).rowwise().norm().mean() / diagonal;
+    EXPECT_LT(error(articulated), 0.6 * start);  // measured 0.016 from 0.036
+    EXPECT_LT(error(articulated), 0.5 * error(rigid));
+}
+
+TEST(Match, RejectsBadInput) {
+    const TriangleMesh mesh = make_limb(2);
+    EXPECT_THROW((void)match(mesh, TriangleMesh{}), InvalidInput);
+    TriangleMesh nan = mesh;
+    nan.V(0, 0) = NAN;
+    EXPECT_THROW((void)match(nan, mesh), InvalidInput);
+    MatchOptions articulated;
+    articulated.prior = MatchPrior::Articulated;
+    EXPECT_THROW((void)match(mesh, mesh, articulated), InvalidInput);
+    MatchOptions wrong_parts = articulated;
+    wrong_parts.parts = two_part_arm(make_limb(3));  // for another vertex count
+    EXPECT_THROW((void)match(mesh, mesh, wrong_parts), InvalidInput);
+    MatchOptions no_step;
+    no_step.max_step = 0;
+    EXPECT_THROW((void)match(mesh, mesh, no_step), InvalidInput);
+}
+
+TEST(Correspondence, ClosestPointsLieOnTheTarget) {
+    const TriangleMesh target = make_limb(3);
+    const TriangleMesh other = make_limb(3, 8);
+    const std::vector<SurfacePoint> points = closest_points(other.V, target);
+    ASSERT_EQ(points.size(), static_cast<std::size_t>(other.V.rows()));
+    for (std::size_t i = 0; i < points.size(); i += 37) {
+        const SurfacePoint& p = points[i];
+        Eigen::Vector3d q = Eigen::Vector3d::Zero();
+        for (int c = 0; c < 3; ++c) {
+            q += p.barycentric[c] * target.V.row(target.F(p.face, c)).transpose();
+        }
+        EXPECT_LT((q - p.point).norm(), 1e-12);
+        EXPECT_NEAR((other.V.row(static_cast<Eigen::Index>(i)).transpose() - q).norm(), p.distance,
+                    1e-12);
+    }
+}
+
+}  // namespace
+}  // namespace genflow
