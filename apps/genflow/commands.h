@@ -11,5 +11,6 @@ void register_demo_command(CLI::App& app);
 void register_smooth_command(CLI::App& app);
 void register_distance_command(CLI::App& app);
 void register_match_command(CLI::App& app);
+void register_eval_command(CLI::App& app);
 
 }  // namespace genflow::cli

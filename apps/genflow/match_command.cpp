@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/mesh_format.h"
+#include "genflow/io/read_part_model.h"
 #include "match_job.h"
 
 namespace genflow::cli {
@@ -20,7 +21,11 @@ struct MatchCommandOptions {
     std::string template_path;
     std::string target_path;
     std::string output;
-    std::string prior = "h1";
+    std::string prior;  // empty: articulated with a part file, else h1
+    std::string parts;
+    std::string part_labels;
+    std::string part_weights;
+    std::string parts_pose;
     std::string correspondence;
     std::string frames;
     std::string summary;
@@ -67,7 +72,24 @@ void run_match(const MatchCommandOptions& options) {
         job.summary = options.summary;
     }
     job.options = options.match;
-    job.options.prior = *parse_match_prior(options.prior);
+    const std::string prior =
+        !options.prior.empty() ? options.prior : (options.parts.empty() ? "h1" : "articulated");
+    job.options.prior = *parse_match_prior(prior);
+    if (!options.parts.empty()) {
+        PartFiles files{options.parts, std::nullopt, std::nullopt, options.parts_pose};
+        if (!options.part_labels.empty()) {
+            files.labels = options.part_labels;
+        }
+        if (!options.part_weights.empty()) {
+            files.weights = options.part_weights;
+        }
+        if (files.pose.empty()) {  // the SMPL layout keys joint centres by mesh name
+            files.pose = std::filesystem::path(options.template_path).stem().string();
+        }
+        job.options.parts = read_part_model(files, template_mesh.mesh.V.rows());
+    } else if (job.options.prior == MatchPrior::Articulated) {
+        throw InvalidInput("match: --prior articulated needs --parts PARTS.json");
+    }
     job.options.align = !options.no_align;
     job.progress_bar = !options.json;
     const nlohmann::json summary = run_match_job(std::move(job));
@@ -78,7 +100,7 @@ void run_match(const MatchCommandOptions& options) {
     std::printf(
         "match: %s prior, %zu level(s), %.2f s (alignment %.2f s), %s; Hausdorff %.4g "
         "(%.3f%% of the target's diagonal), mean distance %.4g (%.3f%%); wrote %s\n",
-        options.prior.c_str(), summary["levels"].size(), summary["seconds"].get<double>(),
+        prior.c_str(), summary["levels"].size(), summary["seconds"].get<double>(),
         summary["alignment_seconds"].get<double>(),
         summary["converged"].get<bool>() ? "converged" : "not converged",
         summary["hausdorff"].get<double>(), 100 * summary["hausdorff_over_diagonal"].get<double>(),
@@ -102,9 +124,19 @@ void register_match_command(CLI::App& app) {
     command
         ->add_option("--prior", options->prior,
                      "Deformation prior (the metric of the flow): l2 (baseline), h1 (smooth), "
-                     "rigid (quasi-rigid: rigid motion and scaling preferred)")
-        ->check(CLI::IsMember({"l2", "h1", "rigid"}))
-        ->capture_default_str();
+                     "rigid (quasi-rigid: rigid motion and scaling preferred), articulated "
+                     "(parts turn about their joints; needs --parts). Default: articulated "
+                     "with --parts, else h1")
+        ->check(CLI::IsMember({"l2", "h1", "rigid", "articulated"}));
+    command->add_option("--parts", options->parts,
+                        "Part tree of the template (JSON; layouts in the README)");
+    command->add_option("--part-labels", options->part_labels,
+                        "Per-vertex part labels (one index per line), if the JSON names none");
+    command->add_option("--part-weights", options->part_weights,
+                        "Per-vertex part weights ('vertex part weight' lines), if the JSON "
+                        "names none");
+    command->add_option("--parts-pose", options->parts_pose,
+                        "Entry of \"joint_centers\" to use (default: the template's file name)");
     command
         ->add_option("--levels", options->match.levels,
                      "Resolution levels (0: automatic, coarsest about 1000 vertices)")

@@ -26,28 +26,29 @@ VertexField unflatten(const Eigen::VectorXd& flat) {
     return Eigen::Map<const RowField>(flat.data(), flat.size() / 3, 3);
 }
 
-// M applied to 3n-vectors (or 3n×m matrices): vertex i's rows scaled by m_i.
-Eigen::MatrixXd mass_times(const Eigen::VectorXd& masses, const Eigen::MatrixXd& fields) {
-    Eigen::MatrixXd result = fields;
+// √m_i repeated for the three rows of vertex i.
+Eigen::VectorXd row_sqrt_masses(const Eigen::VectorXd& masses) {
+    Eigen::VectorXd s(3 * masses.size());
     for (Eigen::Index i = 0; i < masses.size(); ++i) {
-        result.middleRows(3 * i, 3) *= masses[i];
+        s.segment<3>(3 * i).setConstant(std::sqrt(masses[i]));
     }
-    return result;
+    return s;
 }
 
-// Block Gram–Schmidt in the M inner product (SPEC.md §6): each block minus its components
-// along the earlier ones (twice, for round-off), then an eigen-decomposition of its Gram
-// matrix drops the directions already spanned (eigenvalues below 1e-8 of the block's own
-// largest before projection) and orthonormalizes the rest.
+// Block Gram–Schmidt in the M inner product (SPEC.md §6), done on B̃ = M^{1/2} B where it is
+// the plain inner product: each block minus its components along the earlier ones (twice,
+// for round-off), then an eigen-decomposition of its Gram matrix drops the directions
+// already spanned (eigenvalues below 1e-8 of the block's own largest before projection) and
+// orthonormalizes the rest. Returns the Q̃_k = M^{1/2} Q_k.
 std::vector<FieldBlock> orthonormalize(const std::vector<FieldBlock>& blocks,
-                                       const Eigen::VectorXd& masses) {
+                                       const Eigen::VectorXd& sqrt_mass) {
     std::vector<FieldBlock> result;
     for (const FieldBlock& block : blocks) {
         if (block.fields.cols() == 0) {
             continue;
         }
-        Eigen::MatrixXd B = block.fields;
-        const Eigen::MatrixXd original_gram = B.transpose() * mass_times(masses, B);
+        Eigen::MatrixXd B = block.fields.array().colwise() * sqrt_mass.array();
+        const Eigen::MatrixXd original_gram = B.transpose() * B;
         const double scale =
             Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(original_gram, Eigen::EigenvaluesOnly)
                 .eigenvalues()
@@ -57,11 +58,10 @@ std::vector<FieldBlock> orthonormalize(const std::vector<FieldBlock>& blocks,
         }
         for (int pass = 0; pass < 2; ++pass) {
             for (const FieldBlock& earlier : result) {
-                B -= earlier.fields * (earlier.fields.transpose() * mass_times(masses, B));
+                B.noalias() -= earlier.fields * (earlier.fields.transpose() * B);
             }
         }
-        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(B.transpose() *
-                                                                   mass_times(masses, B));
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(B.transpose() * B);
         std::vector<Eigen::Index> kept;
         for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k) {
             if (eigen.eigenvalues()[k] > 1e-8 * scale) {
@@ -71,19 +71,25 @@ std::vector<FieldBlock> orthonormalize(const std::vector<FieldBlock>& blocks,
         if (kept.empty()) {
             continue;
         }
-        FieldBlock orthonormal{Eigen::MatrixXd(B.rows(), static_cast<Eigen::Index>(kept.size())),
-                               block.penalty};
+        Eigen::MatrixXd directions(B.cols(), static_cast<Eigen::Index>(kept.size()));
         for (std::size_t c = 0; c < kept.size(); ++c) {
-            const Eigen::Index k = kept[c];
-            orthonormal.fields.col(static_cast<Eigen::Index>(c)) =
-                B * eigen.eigenvectors().col(k) / std::sqrt(eigen.eigenvalues()[k]);
+            directions.col(static_cast<Eigen::Index>(c)) =
+                eigen.eigenvectors().col(kept[c]) / std::sqrt(eigen.eigenvalues()[kept[c]]);
         }
-        result.push_back(std::move(orthonormal));
+        result.push_back({B * directions, block.penalty});
     }
     return result;
 }
 
 }  // namespace
+
+std::vector<FieldBlock> SubspaceMetric::orthonormal_blocks() const {
+    std::vector<FieldBlock> blocks = blocks_;
+    for (FieldBlock& block : blocks) {
+        block.fields = block.fields.array().colwise() / sqrt_mass_.array();
+    }
+    return blocks;
+}
 
 SubspaceMetric::SubspaceMetric(FieldBasis basis, SubspaceOptions options)
     : basis_(std::move(basis)), options_(options) {
@@ -113,32 +119,31 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
                 "SubspaceMetric::update: block fields must be finite and penalties positive");
         }
     }
-    blocks_ = orthonormalize(blocks, masses);
+    sqrt_mass_ = row_sqrt_masses(masses);
+    blocks_ = orthonormalize(blocks, sqrt_mass_);
     masses_ = std::move(masses);
 }
 
 VertexField SubspaceMetric::gradient(const VertexField& dEdX) const {
     detail::require_rows(dEdX, masses_.size(), "SubspaceMetric::gradient");
-    const Eigen::VectorXd d = flatten(dEdX);
-    Eigen::VectorXd g(d.size());
-    for (Eigen::Index i = 0; i < masses_.size(); ++i) {
-        g.segment<3>(3 * i) = d.segment<3>(3 * i) / masses_[i];
-    }
+    // G⁻¹d = M⁻¹d + Σ (1/μ − 1) M^{-1/2} Q̃ Q̃ᵀ M^{-1/2} d.
+    const Eigen::VectorXd r = flatten(dEdX).cwiseQuotient(sqrt_mass_);
+    Eigen::VectorXd g = r;
     for (const FieldBlock& block : blocks_) {
-        g += (1 / block.penalty - 1) * (block.fields * (block.fields.transpose() * d));
+        g += (1 / block.penalty - 1) * (block.fields * (block.fields.transpose() * r));
     }
-    return unflatten(g);
+    return unflatten(g.cwiseQuotient(sqrt_mass_));
 }
 
 VertexField SubspaceMetric::apply(const VertexField& U) const {
     detail::require_rows(U, masses_.size(), "SubspaceMetric::apply");
-    const Eigen::VectorXd Mu = mass_times(masses_, flatten(U));
-    Eigen::VectorXd result = Mu;
+    // G u = M u + Σ (μ − 1) M^{1/2} Q̃ Q̃ᵀ M^{1/2} u.
+    const Eigen::VectorXd r = flatten(U).cwiseProduct(sqrt_mass_);
+    Eigen::VectorXd result = r;
     for (const FieldBlock& block : blocks_) {
-        result += (block.penalty - 1) *
-                  mass_times(masses_, block.fields * (block.fields.transpose() * Mu));
+        result += (block.penalty - 1) * (block.fields * (block.fields.transpose() * r));
     }
-    return unflatten(result);
+    return unflatten(result.cwiseProduct(sqrt_mass_));
 }
 
 VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& A, double dt,
@@ -166,11 +171,12 @@ VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& 
     if (!(E.minCoeff() > 0) || !detail::all_finite(E)) {
         throw SolverError("SubspaceMetric::shifted_gradient: M + dt·A is not positive");
     }
-    const auto E_inverse_times = [&](Eigen::MatrixXd fields) {
-        for (Eigen::Index i = 0; i < n; ++i) {
-            fields.middleRows(3 * i, 3) /= E[i];
-        }
-        return fields;
+    Eigen::VectorXd E_rows(3 * n);  // E for each of the 3n rows
+    for (Eigen::Index i = 0; i < n; ++i) {
+        E_rows.segment<3>(3 * i).setConstant(E[i]);
+    }
+    const auto E_inverse_times = [&](const Eigen::MatrixXd& fields) -> Eigen::MatrixXd {
+        return fields.array().colwise() / E_rows.array();
     };
     // Woodbury: (E + UΓUᵀ)⁻¹r = E⁻¹r − E⁻¹U (Γ⁻¹ + UᵀE⁻¹U)⁻¹ UᵀE⁻¹r; neutral blocks drop out.
     Eigen::Index columns = 0;
@@ -182,7 +188,8 @@ VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& 
     Eigen::Index column = 0;
     for (const FieldBlock& block : blocks_) {
         if (block.penalty != 1) {
-            U.middleCols(column, block.fields.cols()) = mass_times(masses_, block.fields);
+            U.middleCols(column, block.fields.cols()) =
+                block.fields.array().colwise() * sqrt_mass_.array();  // M Q = M^{1/2} Q̃
             gamma_inverse.segment(column, block.fields.cols()).setConstant(1 / (block.penalty - 1));
             column += block.fields.cols();
         }

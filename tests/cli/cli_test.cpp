@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_runner.h"
@@ -155,15 +156,27 @@ TEST(Cli, DistanceBetweenParallelSquares) {
     EXPECT_EQ(bad.exit_code, 2);
 }
 
-TEST(Cli, DemoWritesItsMeshAndReportsOnIt) {
+TEST(Cli, DemoMatchesTheGeneratedPairAndWritesEverything) {
     const test::TemporaryDirectory directory;
-    const auto result = run_genflow("demo --output-dir " + quoted(directory / "out"));
+    const auto out = directory / "out";
+    const auto result = run_genflow("demo --level 3 --quiet --output-dir " + quoted(out));
     ASSERT_EQ(result.exit_code, 0) << result.err;
-    for (const char* name : {"torus_noisy.ply", "torus_fairing.ply", "torus_volume_fairing.ply"}) {
-        EXPECT_TRUE(std::filesystem::exists(directory / "out" / name)) << name;
+    for (const char* name :
+         {"template.ply", "target.ply", "limb_parts.json", "limb_part_labels.txt", "matched.ply",
+          "correspondence.txt", "summary.json"}) {
+        EXPECT_TRUE(std::filesystem::exists(out / name)) << name;
     }
-    EXPECT_NE(result.out.find("torus_volume_fairing.ply (volume)"), std::string::npos)
-        << result.out;
+    const auto summary = nlohmann::json::parse(std::ifstream(out / "summary.json"));
+    EXPECT_EQ(summary["prior"], "articulated");
+    EXPECT_LT(summary["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.05);
+    EXPECT_NE(result.out.find("correspondence error"), std::string::npos) << result.out;
+    // The part files it wrote are read back by genflow match.
+    const auto again =
+        run_genflow("match " + quoted(out / "template.ply") + " " + quoted(out / "target.ply") +
+                    " -o " + quoted(directory / "again.ply") + " --parts " +
+                    quoted(out / "limb_parts.json") + " --iterations 5 --json");
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_EQ(nlohmann::json::parse(again.out)["prior"], "articulated");
 }
 
 TEST(Cli, DemoIntoAnUnwritablePlaceFailsCleanly) {

@@ -62,7 +62,7 @@ public:
 
     /// The M-orthonormal blocks Q_k of the last update() (empty blocks dropped), with their
     /// penalties.
-    [[nodiscard]] const std::vector<FieldBlock>& orthonormal_blocks() const { return blocks_; }
+    [[nodiscard]] std::vector<FieldBlock> orthonormal_blocks() const;
     /// The lumped masses of the last update().
     [[nodiscard]] const Eigen::VectorXd& masses() const { return masses_; }
 
@@ -70,7 +70,8 @@ private:
     FieldBasis basis_;
     SubspaceOptions options_;
     Eigen::VectorXd masses_;
-    std::vector<FieldBlock> blocks_;
+    Eigen::VectorXd sqrt_mass_;       // √m_i for each of the 3n rows
+    std::vector<FieldBlock> blocks_;  // Q̃_k = M^{1/2} Q_k, orthonormal
 };
 
 /// Penalties of the quasi-rigid prior (paper §6.3.1): each in (0, 1], smaller = that motion is
