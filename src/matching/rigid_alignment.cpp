@@ -125,7 +125,9 @@ public:
         double reference = std::numeric_limits<double>::infinity();  // value 10 steps ago
         for (int k = 0; k < iterations; ++k) {
             if (k % 10 == 0) {
-                if (reference - c.value <= stagnation_ * std::abs(c.value)) {
+                // (Both finite: inf − inf would raise FE_INVALID.)
+                if (std::isfinite(reference) && std::isfinite(c.value) &&
+                    reference - c.value <= stagnation_ * std::abs(c.value)) {
                     return;
                 }
                 reference = c.value;

@@ -27,4 +27,36 @@ Eigen::VectorXd floored_lumped_masses(const TriangleMesh& mesh, MassType type) {
     return masses.cwiseMax(mass_floor(masses));
 }
 
+void pin_fixed(Eigen::SparseMatrix<double>& S, const std::vector<bool>& fixed) {
+    if (fixed.empty()) {
+        return;
+    }
+    for (Eigen::Index col = 0; col < S.outerSize(); ++col) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(S, col); it; ++it) {
+            if (fixed[static_cast<std::size_t>(it.row())] ||
+                fixed[static_cast<std::size_t>(it.col())]) {
+                it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+            }
+        }
+    }
+}
+
+VertexField zero_fixed_rows(VertexField field, const std::vector<bool>& fixed) {
+    for (std::size_t i = 0; i < fixed.size(); ++i) {
+        if (fixed[i]) {
+            field.row(static_cast<Eigen::Index>(i)).setZero();
+        }
+    }
+    return field;
+}
+
+void copy_fixed_rows(VertexField& result, const VertexField& input,
+                     const std::vector<bool>& fixed) {
+    for (std::size_t i = 0; i < fixed.size(); ++i) {
+        if (fixed[i]) {
+            result.row(static_cast<Eigen::Index>(i)) = input.row(static_cast<Eigen::Index>(i));
+        }
+    }
+}
+
 }  // namespace genflow::detail

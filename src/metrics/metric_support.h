@@ -30,6 +30,17 @@ inline void require_mask_size(const std::vector<bool>& mask, Eigen::Index vertic
     }
 }
 
+/// Fixed vertices (Metric::set_fixed_vertices()): the rows and columns of `S` for them become
+/// those of the identity, keeping the sparsity pattern (so symbolic analyses stay valid).
+void pin_fixed(Eigen::SparseMatrix<double>& S, const std::vector<bool>& fixed);
+
+/// `field` with the rows of fixed vertices zeroed.
+[[nodiscard]] VertexField zero_fixed_rows(VertexField field, const std::vector<bool>& fixed);
+
+/// Copies the rows of fixed vertices from `input` into `result`: an operator applied as
+/// `result` then acts as the identity on them.
+void copy_fixed_rows(VertexField& result, const VertexField& input, const std::vector<bool>& fixed);
+
 /// Throws InvalidInput naming `caller` unless `field` has `rows` rows.
 inline void require_rows(const VertexField& field, Eigen::Index rows, const char* caller) {
     if (field.rows() != rows) {

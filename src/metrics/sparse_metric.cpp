@@ -9,35 +9,6 @@
 
 namespace genflow {
 
-namespace {
-
-// Replaces the rows and columns of fixed vertices by those of the identity, keeping the
-// sparsity pattern (explicit zeros) so that the symbolic analysis stays reusable.
-void pin_fixed(Eigen::SparseMatrix<double>& S, const std::vector<bool>& fixed) {
-    if (fixed.empty()) {
-        return;
-    }
-    for (Eigen::Index col = 0; col < S.outerSize(); ++col) {
-        for (Eigen::SparseMatrix<double>::InnerIterator it(S, col); it; ++it) {
-            if (fixed[static_cast<std::size_t>(it.row())] ||
-                fixed[static_cast<std::size_t>(it.col())]) {
-                it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-            }
-        }
-    }
-}
-
-VertexField zero_fixed_rows(VertexField field, const std::vector<bool>& fixed) {
-    for (std::size_t i = 0; i < fixed.size(); ++i) {
-        if (fixed[i]) {
-            field.row(static_cast<Eigen::Index>(i)).setZero();
-        }
-    }
-    return field;
-}
-
-}  // namespace
-
 struct SparseMetric::Impl {
     Eigen::SparseMatrix<double> G;
     detail::SpdSolver metric_solver;   // factors G (pinned)
@@ -65,7 +36,7 @@ void SparseMetric::update(const TriangleMesh& mesh) {
     }
     impl_->fixed = fixed_;
     Eigen::SparseMatrix<double> pinned = impl_->G;
-    pin_fixed(pinned, impl_->fixed);
+    detail::pin_fixed(pinned, impl_->fixed);
     impl_->metric_solver.compute(pinned, "SparseMetric::update");
     impl_->ready = true;
 }
@@ -75,7 +46,7 @@ VertexField SparseMetric::gradient(const VertexField& dEdX) const {
         throw InvalidInput("SparseMetric::gradient: update() was not called");
     }
     detail::require_rows(dEdX, impl_->G.rows(), "SparseMetric::gradient");
-    return impl_->metric_solver.solve(zero_fixed_rows(dEdX, impl_->fixed));
+    return impl_->metric_solver.solve(detail::zero_fixed_rows(dEdX, impl_->fixed));
 }
 
 VertexField SparseMetric::apply(const VertexField& U) const {
@@ -100,9 +71,9 @@ VertexField SparseMetric::shifted_gradient(const Eigen::SparseMatrix<double>& A,
     }
     Eigen::SparseMatrix<double> shifted = impl_->G + dt * A;
     shifted.makeCompressed();
-    pin_fixed(shifted, impl_->fixed);
+    detail::pin_fixed(shifted, impl_->fixed);
     impl_->shifted_solver.compute(shifted, "SparseMetric::shifted_gradient");
-    return impl_->shifted_solver.solve(zero_fixed_rows(R, impl_->fixed));
+    return impl_->shifted_solver.solve(detail::zero_fixed_rows(R, impl_->fixed));
 }
 
 const Eigen::SparseMatrix<double>& SparseMetric::matrix() const {

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "genflow/exceptions.h"
 #include "genflow/operators/normals.h"
@@ -38,12 +39,7 @@ struct VolumeControlledMetric::Impl {
     bool ready = false;
 
     VertexField zero_fixed(VertexField field) const {
-        for (std::size_t i = 0; i < fixed.size(); ++i) {
-            if (fixed[i]) {
-                field.row(static_cast<Eigen::Index>(i)).setZero();
-            }
-        }
-        return field;
+        return detail::zero_fixed_rows(std::move(field), fixed);
     }
 
     // P v = N Ψᵀ diag(1/a) Ψ D Nᵀ v.
@@ -133,12 +129,7 @@ VertexField VolumeControlledMetric::apply(const VertexField& U) const {
         const VertexField By = d.apply_b(unflatten(y), options_.lambda);
         VertexField result = By.array().colwise() * d.masses.array();
         // Fixed rows: identity, so the operator stays SPD on the whole space.
-        for (std::size_t i = 0; i < d.fixed.size(); ++i) {
-            if (d.fixed[i]) {
-                result.row(static_cast<Eigen::Index>(i)) =
-                    unflatten(y).row(static_cast<Eigen::Index>(i));
-            }
-        }
+        detail::copy_fixed_rows(result, unflatten(y), d.fixed);
         return flatten(result);
     };
     const VertexField rhs = d.zero_fixed(U).array().colwise() * d.masses.array();
@@ -169,14 +160,7 @@ VertexField VolumeControlledMetric::shifted_gradient(const Eigen::SparseMatrix<d
     for (Eigen::Index i = 0; i < n; ++i) {
         fairing.coeffRef(i, i) += d.masses[i];
     }
-    for (Eigen::Index col = 0; col < fairing.outerSize(); ++col) {  // pin fixed vertices
-        for (Eigen::SparseMatrix<double>::InnerIterator it(fairing, col); it; ++it) {
-            if (!d.fixed.empty() && (d.fixed[static_cast<std::size_t>(it.row())] ||
-                                     d.fixed[static_cast<std::size_t>(it.col())])) {
-                it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-            }
-        }
-    }
+    detail::pin_fixed(fairing, d.fixed);
     fairing.makeCompressed();
     d.preconditioner.compute(fairing, "VolumeControlledMetric::shifted_gradient");
 
@@ -184,11 +168,7 @@ VertexField VolumeControlledMetric::shifted_gradient(const Eigen::SparseMatrix<d
         const VertexField Z = unflatten(z);
         VertexField result = Z.array().colwise() * d.masses.array();
         result += dt * (A * d.apply_b(Z, options_.lambda));
-        for (std::size_t i = 0; i < d.fixed.size(); ++i) {
-            if (d.fixed[i]) {
-                result.row(static_cast<Eigen::Index>(i)) = Z.row(static_cast<Eigen::Index>(i));
-            }
-        }
+        detail::copy_fixed_rows(result, Z, d.fixed);
         return flatten(result);
     };
     const auto precondition = [&](const Eigen::VectorXd& r) -> Eigen::VectorXd {
