@@ -31,9 +31,10 @@ std::string read_text(const std::filesystem::path& file) {
     return text.str();
 }
 
-Eigen::Vector3d point(const std::filesystem::path& file, const json& value, const std::string& what) {
-    if (!value.is_array() || value.size() != 3 || !value[0].is_number() ||
-        !value[1].is_number() || !value[2].is_number()) {
+Eigen::Vector3d point(const std::filesystem::path& file, const json& value,
+                      const std::string& what) {
+    if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
+        !value[2].is_number()) {
         fail(file, what + " must be an array of three numbers");
     }
     return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
@@ -98,8 +99,7 @@ std::vector<Part> parse_tree(const std::filesystem::path& file, const json& docu
             if (!parent.is_null() && !parent.is_number_integer()) {
                 fail(file, "bone " + std::to_string(b) + ": parent_bone must be an index or null");
             }
-            parts.push_back({"bone" + std::to_string(b),
-                             parent.is_null() ? -1 : parent.get<int>(),
+            parts.push_back({"bone" + std::to_string(b), parent.is_null() ? -1 : parent.get<int>(),
                              point(file, bones[b].value("joint_center", json()),
                                    "bone " + std::to_string(b) + " joint_center")});
         }
@@ -228,12 +228,13 @@ PartModel read_part_model(const PartFiles& files, Eigen::Index vertices) {
         } else if (document.contains("weights") && document["weights"].is_string()) {
             weights = base / document["weights"].get<std::string>();
         } else {
-            fail(files.tree, "no per-vertex part labels or weights (give a labels or weights file)");
+            fail(files.tree,
+                 "no per-vertex part labels or weights (give a labels or weights file)");
         }
     }
     const std::filesystem::path& per_vertex = labels ? *labels : *weights;
-    model.weights = labels ? read_labels(*labels, vertices, count)
-                           : read_weights(*weights, vertices, count);
+    model.weights =
+        labels ? read_labels(*labels, vertices, count) : read_weights(*weights, vertices, count);
     try {
         check_part_model(model, vertices);
     } catch (const InvalidInput& e) {
