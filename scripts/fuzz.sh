@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 seconds=${1:-20}
 cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz
+cmake --build --preset fuzz --target ply_fuzz off_fuzz stl_fuzz obj_fuzz
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 run() {
