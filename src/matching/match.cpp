@@ -260,17 +260,24 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     result.levels.push_back(
         report(best.mesh, coarsest, best, pyramid_seconds + seconds_since(clock)));
 
-    // Finer levels: transfer, then a short flow.
-    TriangleMesh current = std::move(best.mesh);
-    for (int l = count - 2; l >= 0 && !cancelled; --l) {
-        clock = std::chrono::steady_clock::now();
+    // Level l's template carried from the deformed level l + 1 (both at rest placed by the
+    // chosen start).
+    const auto carry_to = [&](int l, const Eigen::MatrixX3d& coarse_deformed) {
         const Level& level = pyramid[static_cast<std::size_t>(l)];
         TriangleMesh rest = level.template_mesh;
         rest.V = best_start.apply(rest.V);
         TriangleMesh coarse_rest = pyramid[static_cast<std::size_t>(l + 1)].template_mesh;
         coarse_rest.V = best_start.apply(coarse_rest.V);
-        const TriangleMesh moved =
-            transfer(rest, coarse_rest, current.V, moved_embedding(level.embedding, best_start));
+        return transfer(rest, coarse_rest, coarse_deformed,
+                        moved_embedding(level.embedding, best_start));
+    };
+
+    // Finer levels: transfer, then a short flow.
+    TriangleMesh current = std::move(best.mesh);
+    for (int l = count - 2; l >= 0 && !cancelled; --l) {
+        clock = std::chrono::steady_clock::now();
+        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const TriangleMesh moved = carry_to(l, current.V);
         FlowResult flow = flow_level(l, moved, options.fine_iterations, best_start);
         result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));
         current = std::move(flow.mesh);
@@ -278,13 +285,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     if (cancelled && static_cast<int>(result.levels.size()) < count) {
         // Carry the last result up to the input's resolution so the output keeps its vertices.
         for (int l = count - static_cast<int>(result.levels.size()) - 1; l >= 0; --l) {
-            const Level& level = pyramid[static_cast<std::size_t>(l)];
-            TriangleMesh rest = level.template_mesh;
-            rest.V = best_start.apply(rest.V);
-            TriangleMesh coarse_rest = pyramid[static_cast<std::size_t>(l + 1)].template_mesh;
-            coarse_rest.V = best_start.apply(coarse_rest.V);
-            current = transfer(rest, coarse_rest, current.V,
-                               moved_embedding(level.embedding, best_start));
+            current = carry_to(l, current.V);
         }
     }
     result.deformed = TriangleMesh{current.V, template_mesh.F};
