@@ -199,6 +199,23 @@ TEST(Match, RecoversARigidlyMovedShapeFromAnyPose) {
     EXPECT_LT(result.levels.back().energy_end, result.levels.back().energy_start);
 }
 
+TEST(Match, CarriesTheCoarseMatchToTheInputResolution) {
+    const TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target = make_limb(4, 9);
+    const Similarity truth = some_similarity();
+    target.V = truth.apply(target.V);
+    MatchOptions options;
+    options.prior = MatchPrior::Rigid;
+    options.levels = 2;
+    const MatchResult result = match(template_mesh, target, options);
+    ASSERT_EQ(result.levels.size(), 2U);
+    EXPECT_LT(result.levels.front().template_vertices, template_mesh.V.rows());
+    EXPECT_EQ(result.levels.back().template_vertices, template_mesh.V.rows());
+    EXPECT_EQ(result.deformed.F, template_mesh.F);
+    const double error = (result.deformed.V - truth.apply(template_mesh.V)).rowwise().norm().mean();
+    EXPECT_LT(error, 0.01 * bounding_box_diagonal(target));
+}
+
 TEST(Match, ArticulatedPriorFollowsABendTheRigidPriorCannot) {
     const TriangleMesh template_mesh = make_limb(3);
     TriangleMesh target = make_limb(4, 9);
