@@ -141,7 +141,7 @@ struct Parameters {
     std::size_t stored_term_budget;
 };
 
-using Neighbours = std::vector<std::pair<std::uint32_t, double>>;
+using Neighbours = detail::NeighbourList;
 
 // The truncation radius (as a squared distance) of the query at x, with the points within it
 // in `found`. Adaptive radius (SPEC.md §8): for any point m at d_m = |x − y_m|² + ε²,
@@ -159,9 +159,7 @@ double gather_within_radius(const detail::PointGrid& grid, const Eigen::Vector3d
             break;  // the last pass, over all points, always finds one
         }
     }
-    found.clear();
-    grid.visit_within(x, grid.rings_to_cover(std::sqrt(radius2)), radius2,
-                      [&](std::uint32_t slot, double dist2) { found.emplace_back(slot, dist2); });
+    grid.collect_within(x, grid.rings_to_cover(std::sqrt(radius2)), radius2, found);
     return radius2;
 }
 
@@ -176,18 +174,16 @@ double visit_terms(const Side& from, const Side& to, const Parameters& p, Eigen:
     if (p.truncation > 0) {
         gather_within_radius(grid, x, p.eps2, found);
     } else {
-        found.clear();
-        grid.visit_within(
-            x, 0, std::numeric_limits<double>::infinity(),
-            [&](std::uint32_t slot, double dist2) { found.emplace_back(slot, dist2); });
+        grid.collect_within(x, 0, std::numeric_limits<double>::infinity(), found);
     }
     double nearest2 = std::numeric_limits<double>::infinity();
-    for (const auto& point : found) {
-        nearest2 = std::min(nearest2, point.second);
+    for (std::size_t k = 0; k < found.count; ++k) {
+        nearest2 = std::min(nearest2, found.distances2[k]);
     }
     const double d_star = nearest2 + p.eps2;  // κ_m ≥ 1: the point m itself is kept
-    for (const auto& [slot, dist2] : found) {
-        const double d = dist2 + p.eps2;
+    for (std::size_t k = 0; k < found.count; ++k) {
+        const std::uint32_t slot = found.slots[k];
+        const double d = found.distances2[k] + p.eps2;
         visit(slot, d, grid.weight(slot) * ratio_power(d_star / d, p.alpha, p.integer_alpha));
     }
     return d_star;
@@ -229,7 +225,7 @@ SourceSums sum_source(const Side& source, const Side& target, const Parameters& 
                     moment[0] += s;
                     moment.tail<3>() += s * grid.position(term).transpose();
                 });
-            pairs += found.size();
+            pairs += found.count;
             sums.log_f[i] = std::log(sum) - p.alpha * std::log(d_star);
             sums.moments.row(i) = moment / sum;
         }

@@ -20,6 +20,7 @@ PointGrid::PointGrid(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weig
     while (cells_along(0) * cells_along(1) * cells_along(2) > limit) {
         cell_ *= 1.25;
     }
+    inverse_cell_ = 1 / cell_;
     for (int a = 0; a < 3; ++a) {
         dims_[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(cells_along(a));
     }
@@ -31,8 +32,8 @@ PointGrid::PointGrid(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weig
         std::array<std::int64_t, 3> c{};
         for (int a = 0; a < 3; ++a) {
             c[static_cast<std::size_t>(a)] = std::min<std::int64_t>(
-                static_cast<std::int64_t>((points(static_cast<Eigen::Index>(i), a) - origin_[a]) /
-                                          cell_),
+                static_cast<std::int64_t>((points(static_cast<Eigen::Index>(i), a) - origin_[a]) *
+                                          inverse_cell_),
                 dims_[static_cast<std::size_t>(a)] - 1);
         }
         cell_of[i] = static_cast<std::uint32_t>((c[2] * dims_[1] + c[1]) * dims_[0] + c[0]);

@@ -15,6 +15,23 @@
 
 namespace genflow::detail {
 
+/// Points found by PointGrid::collect_within(): the first `count` entries of the arrays, which
+/// only grow, so that a list reused from query to query allocates nothing.
+struct NeighbourList {
+    std::vector<std::uint32_t> slots;
+    std::vector<double> distances2;
+    std::size_t count = 0;
+
+    /// Makes room for `size` entries, keeping the first `count`.
+    void reserve(std::size_t size) {
+        if (size > slots.size()) {
+            const std::size_t grown = std::max(size, 2 * slots.size());
+            slots.resize(grown);
+            distances2.resize(grown);
+        }
+    }
+};
+
 class PointGrid {
 public:
     /// Grids the rows of `points` (#P×3, finite), each with a `weight` (#P, kept for the
@@ -70,21 +87,31 @@ public:
         return std::min(even, odd);
     }
 
-    /// Calls visit(slot, squared distance) for every point of the block (as above) with
-    /// squared distance ≤ `radius2`; the accessors below read the point at `slot`.
-    template <typename Visit>
-    void visit_within(const Eigen::Vector3d& query, int k, double radius2, Visit&& visit) const {
+    /// Replaces the contents of `found` by the points of the block (as above) with squared
+    /// distance ≤ `radius2`, with those distances; the accessors below read a point by slot.
+    void collect_within(const Eigen::Vector3d& query, int k, double radius2,
+                        NeighbourList& found) const {
         const double* x = x_.data();
         const double* y = y_.data();
         const double* z = z_.data();
+        const double qx = query[0];  // locals: the stores below could alias `query`
+        const double qy = query[1];
+        const double qz = query[2];
+        found.count = 0;
         for_each_run(query, k, radius2, [&](std::uint32_t begin, std::uint32_t end) {
+            found.reserve(found.count + (end - begin));
+            std::uint32_t* slots = found.slots.data();
+            double* distances2 = found.distances2.data();
+            std::size_t count = found.count;
+            // Every point is written and only the kept ones advance the count: about a third
+            // of a block is kept, in no predictable order, which a branch would mispredict.
             for (std::uint32_t p = begin; p < end; ++p) {
-                const double d =
-                    square(x[p] - query[0]) + square(y[p] - query[1]) + square(z[p] - query[2]);
-                if (d <= radius2) {
-                    visit(p, d);
-                }
+                const double d = square(x[p] - qx) + square(y[p] - qy) + square(z[p] - qz);
+                slots[count] = p;
+                distances2[count] = d;
+                count += d <= radius2 ? 1 : 0;
             }
+            found.count = count;
         });
     }
 
@@ -119,47 +146,50 @@ private:
         std::array<std::int64_t, 3> high{};
         for (std::size_t a = 0; a < 3; ++a) {
             const auto axis = static_cast<Eigen::Index>(a);
-            const std::int64_t cell = cell_floor((query[axis] - origin_[axis]) / cell_);
+            const std::int64_t cell = cell_floor((query[axis] - origin_[axis]) * inverse_cell_);
             low[a] = std::max<std::int64_t>(cell - k, 0);
             high[a] = std::min<std::int64_t>(cell + k, dims_[a] - 1);
             if (low[a] > high[a]) {
                 return;
             }
         }
+        // The cells along `axis` that a ball of radius `half` about the query reaches.
+        const auto reach = [&](std::size_t axis, double half) {
+            const double q = query[static_cast<Eigen::Index>(axis)] - origin_[axis];
+            return std::pair{std::max(low[axis], cell_floor((q - half) * inverse_cell_)),
+                             std::min(high[axis], cell_floor((q + half) * inverse_cell_))};
+        };
         // Squared distance from the query to the slab of cells `c` along `axis`.
-        const auto gap2 = [&](Eigen::Index axis, std::int64_t c) {
+        const auto gap2 = [&](std::size_t axis, std::int64_t c) {
             const double low_side = origin_[axis] + static_cast<double>(c) * cell_;
-            const double gap =
-                std::max({low_side - query[axis], query[axis] - (low_side + cell_), 0.0});
+            const double q = query[static_cast<Eigen::Index>(axis)];
+            const double gap = std::max({low_side - q, q - (low_side + cell_), 0.0});
             return gap * gap;
         };
-        for (std::int64_t z = low[2]; z <= high[2]; ++z) {
-            const double gz = gap2(2, z);
-            if (gz > radius2) {
-                continue;
-            }
-            for (std::int64_t y = low[1]; y <= high[1]; ++y) {
-                const double left = radius2 - gz - gap2(1, y);
-                if (left < 0) {
-                    continue;
-                }
-                // The cells along x that the ball reaches in this row.
-                const double half = std::sqrt(left);
-                const std::int64_t first =
-                    std::max(low[0], cell_floor((query[0] - half - origin_[0]) / cell_));
-                const std::int64_t last =
-                    std::min(high[0], cell_floor((query[0] + half - origin_[0]) / cell_));
+        // Only the rows the ball reaches are visited (a block has (2k+1)² rows, the ball about
+        // π/4 of them), each clipped to the ball's chord through it.
+        const auto [z_first, z_last] = reach(2, std::sqrt(radius2));
+        for (std::int64_t z = z_first; z <= z_last; ++z) {
+            const double left_z = radius2 - gap2(2, z);
+            const auto [y_first, y_last] = reach(1, std::sqrt(std::max(left_z, 0.0)));
+            for (std::int64_t y = y_first; y <= y_last; ++y) {
+                const double left = left_z - gap2(1, y);
+                const auto [first, last] = reach(0, std::sqrt(std::max(left, 0.0)));
                 if (first > last) {
                     continue;
                 }
                 const std::int64_t row = (z * dims_[1] + y) * dims_[0];
-                run(start_[static_cast<std::size_t>(row + first)],
-                    start_[static_cast<std::size_t>(row + last + 1)]);
+                const std::uint32_t begin = start_[static_cast<std::size_t>(row + first)];
+                const std::uint32_t end = start_[static_cast<std::size_t>(row + last + 1)];
+                if (begin < end) {
+                    run(begin, end);
+                }
             }
         }
     }
 
     double cell_ = 1;
+    double inverse_cell_ = 1;  // cells are found by multiplication, here and when sorting
     Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
     std::array<std::int64_t, 3> dims_{1, 1, 1};
     std::vector<std::uint32_t> start_;  // per cell (x fastest), plus one: first point in it
