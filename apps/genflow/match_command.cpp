@@ -125,9 +125,10 @@ void register_match_command(CLI::App& app) {
         ->add_option("--prior", options->prior,
                      "Deformation prior (the metric of the flow): l2 (baseline), h1 (smooth), "
                      "rigid (quasi-rigid: rigid motion and scaling preferred), articulated "
-                     "(parts turn about their joints; needs --parts). Default: articulated "
-                     "with --parts, else h1")
-        ->check(CLI::IsMember({"l2", "h1", "rigid", "articulated"}));
+                     "(parts turn about their joints; needs --parts), isometric (bends "
+                     "freely, resists local stretching). Default: articulated with --parts, "
+                     "else h1")
+        ->check(CLI::IsMember({"l2", "h1", "rigid", "articulated", "isometric"}));
     command->add_option("--parts", options->parts,
                         "Part tree of the template (JSON; layouts in the README)");
     command->add_option("--part-labels", options->part_labels,
@@ -155,6 +156,17 @@ void register_match_command(CLI::App& app) {
     command
         ->add_option("--alpha", options->match.alpha, "Exponent of the pseudo-Hausdorff distance")
         ->check(CLI::Range(0.5, 1000.0))
+        ->capture_default_str();
+    command
+        ->add_option("--rigidity-length", options->match.isometric.rigidity_length,
+                     "Isometric prior: patches smaller than this fraction of the diagonal keep "
+                     "their edge lengths")
+        ->check(CLI::Range(0.0, 10.0))
+        ->capture_default_str();
+    command
+        ->add_option("--fake-edges", options->match.isometric.fake_edges,
+                     "Isometric prior: edges added across the limbs for rigidity")
+        ->check(CLI::Range(0, 100000))
         ->capture_default_str();
     command
         ->add_option("--candidates", options->match.alignment_candidates,

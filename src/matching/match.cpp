@@ -27,13 +27,15 @@ const char* to_string(MatchPrior prior) {
             return "rigid";
         case MatchPrior::Articulated:
             return "articulated";
+        case MatchPrior::Isometric:
+            return "isometric";
     }
     return "unknown";
 }
 
 std::optional<MatchPrior> parse_match_prior(const std::string& name) {
-    for (const MatchPrior prior :
-         {MatchPrior::L2, MatchPrior::H1, MatchPrior::Rigid, MatchPrior::Articulated}) {
+    for (const MatchPrior prior : {MatchPrior::L2, MatchPrior::H1, MatchPrior::Rigid,
+                                   MatchPrior::Articulated, MatchPrior::Isometric}) {
         if (name == to_string(prior)) {
             return prior;
         }
@@ -87,6 +89,8 @@ std::unique_ptr<Metric> make_metric(const MatchOptions& options, const TriangleM
         case MatchPrior::Articulated:
             return std::make_unique<SubspaceMetric>(
                 quasi_articulated_metric(template_mesh, *parts, options.articulated));
+        case MatchPrior::Isometric:
+            return std::make_unique<QuasiIsometricMetric>(options.isometric);
     }
     throw InvalidInput("match: unknown prior");
 }

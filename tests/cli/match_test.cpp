@@ -54,6 +54,22 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(directory / "summary.json")), json);
 }
 
+TEST(MatchCli, RunsTheIsometricPriorWithItsOptions) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "template.ply", make_limb(2));
+    write_mesh(directory / "target.ply", make_limb(3, 4));
+    const std::string command = "match " + quoted(directory / "template.ply") + " " +
+                                quoted(directory / "target.ply") + " -o " +
+                                quoted(directory / "out.ply") + " --prior isometric --no-align";
+    const auto result = run_genflow(command + " --rigidity-length 0.3 --fake-edges 20 --json");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto json = nlohmann::json::parse(result.out);
+    EXPECT_EQ(json["prior"], "isometric");
+    EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
+    const auto refused = run_genflow(command + " --rigidity-length -1");
+    EXPECT_NE(refused.exit_code, 0);
+}
+
 TEST(MatchCli, RefusesBadInputAndWritesNothing) {
     const test::TemporaryDirectory directory;
     write_mesh(directory / "limb.ply", make_limb(2));

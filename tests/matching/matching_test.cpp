@@ -14,6 +14,7 @@
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/match.h"
 #include "genflow/matching/multiresolution.h"
+#include "genflow/mesh/edges.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/mesh/validate.h"
 #include "genflow/metrics/l2_metric.h"
@@ -238,6 +239,45 @@ TEST(Match, ArticulatedPriorFollowsABendTheRigidPriorCannot) {
     const double start = (template_mesh.V - truth).rowwise().norm().mean() / diagonal;
     EXPECT_LT(error(articulated), 0.6 * start);  // measured 0.016 from 0.036
     EXPECT_LT(error(articulated), 0.5 * error(rigid));
+}
+
+// Without parts, the quasi-isometric prior follows the bend while keeping edge lengths better
+// than L2 (which slides) and bending where the quasi-rigid prior cannot.
+TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
+    const TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target = make_limb(4, 9);
+    const std::vector<Joint> bend{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}};
+    target.V = bend_at_joints(target.V, bend);
+    const Eigen::MatrixX3d truth = bend_at_joints(template_mesh.V, bend);
+    const double diagonal = bounding_box_diagonal(target);
+    const auto error = [&](const MatchResult& r) {
+        return (r.deformed.V - truth).rowwise().norm().mean() / diagonal;
+    };
+    const Eigen::MatrixX2i edges = unique_edges(template_mesh.F);
+    const auto strain = [&](const MatchResult& r) {  // mean |ℓ'/ℓ − 1| over the edges
+        double sum = 0;
+        for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+            const double before =
+                (template_mesh.V.row(edges(e, 0)) - template_mesh.V.row(edges(e, 1))).norm();
+            const double after =
+                (r.deformed.V.row(edges(e, 0)) - r.deformed.V.row(edges(e, 1))).norm();
+            sum += std::abs(after / before - 1);
+        }
+        return sum / static_cast<double>(edges.rows());
+    };
+    MatchOptions options;
+    options.align = false;
+    options.prior = MatchPrior::Isometric;
+    const MatchResult isometric = match(template_mesh, target, options);
+    options.prior = MatchPrior::L2;
+    const MatchResult l2 = match(template_mesh, target, options);
+    options.prior = MatchPrior::Rigid;
+    const MatchResult rigid = match(template_mesh, target, options);
+    const double start = (template_mesh.V - truth).rowwise().norm().mean() / diagonal;
+    EXPECT_LT(error(isometric), 0.8 * start);         // measured 0.026 from 0.036
+    EXPECT_LT(error(isometric), 0.8 * error(rigid));  // 0.040
+    EXPECT_LT(error(isometric), error(l2));           // 0.030
+    EXPECT_LT(strain(isometric), 0.7 * strain(l2));   // 0.034 against 0.060
 }
 
 TEST(Match, RejectsBadInput) {

@@ -10,6 +10,7 @@
 #include "genflow/matching/articulated_prior.h"
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh.h"
+#include "genflow/metrics/quasi_isometric_metric.h"
 #include "genflow/metrics/subspace_metric.h"
 
 namespace genflow {
@@ -20,9 +21,10 @@ enum class MatchPrior {
     H1,           ///< Sobolev H1: smooth, but no notion of rigidity
     Rigid,        ///< quasi-rigid (paper eq. 16, SPEC.md §5): rigid motion and scaling are cheap
     Articulated,  ///< quasi-articulated (SPEC.md §6): needs MatchOptions::parts
+    Isometric,    ///< quasi-isometric (SPEC.md §7): bends freely, resists local stretching
 };
 
-/// "l2", "h1", "rigid", "articulated".
+/// "l2", "h1", "rigid", "articulated", "isometric".
 [[nodiscard]] const char* to_string(MatchPrior prior);
 /// The prior named by `name` (as to_string() spells it), or nothing.
 [[nodiscard]] std::optional<MatchPrior> parse_match_prior(const std::string& name);
@@ -76,6 +78,8 @@ struct MatchOptions {
     /// template's own frame), and the prior's penalties.
     std::optional<PartModel> parts;
     QuasiArticulatedOptions articulated;
+    /// Parameters of the quasi-isometric prior (rigidity length relative to the diagonal).
+    QuasiIsometricOptions isometric;
     /// H1 smoothing length as a multiple of the template's mean edge length: λ = (k·h)².
     double h1_length = 5;
     /// Called after every step; return false to stop. Optional.

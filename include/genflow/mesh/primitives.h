@@ -30,7 +30,7 @@ namespace genflow {
 /// Ellipsoid with semi-axes `radii` along x, y, z: an icosphere of `level` (see
 /// make_icosphere()), first turned by a random rotation drawn from `sampling_seed` (0: none),
 /// so that two seeds sample the same surface at different points, then stretched.
-/// 	hrows InvalidInput as make_icosphere(), or if a radius is not positive and finite.
+/// \throws InvalidInput as make_icosphere(), or if a radius is not positive and finite.
 [[nodiscard]] TriangleMesh make_ellipsoid(int level, const Eigen::Vector3d& radii,
                                           std::uint64_t sampling_seed = 0);
 
@@ -54,7 +54,7 @@ struct Joint {
 /// `points` posed by the joints, applied one after the other in the rest frame (so joints
 /// should move disjoint parts, e.g. the two ends of a limb): the generated articulated pairs of
 /// `genflow demo` and the matching tests, with the rest points as ground truth.
-/// 	hrows InvalidInput if a joint has a zero direction or axis, or a width that is not
+/// \throws InvalidInput if a joint has a zero direction or axis, or a width that is not
 ///         positive, or a value that is not finite.
 [[nodiscard]] Eigen::MatrixX3d bend_at_joints(const Eigen::MatrixX3d& points,
                                               const std::vector<Joint>& joints);
