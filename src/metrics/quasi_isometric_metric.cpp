@@ -162,6 +162,7 @@ struct QuasiIsometricMetric::Impl {
     std::vector<std::pair<int, int>> fake_edges;
     Eigen::Index fake_edges_for = -1;  // the vertex count they were chosen for
     bool ready = false;
+    int updates_since_build = 0;
 };
 
 QuasiIsometricMetric::QuasiIsometricMetric(const QuasiIsometricOptions& options)
@@ -177,13 +178,19 @@ void QuasiIsometricMetric::update(const TriangleMesh& mesh) {
         throw InvalidInput(std::string(kCaller) + ": mesh has no faces");
     }
     if (!detail::finite_at_least(options_.rigidity_length, 0) ||
-        !detail::finite_at_least(options_.fake_edge_weight, 0) || options_.fake_edges < 0) {
+        !detail::finite_at_least(options_.fake_edge_weight, 0) || options_.fake_edges < 0 ||
+        options_.refresh_interval < 1) {
         throw InvalidInput(std::string(kCaller) +
                            ": rigidity_length and fake_edge_weight must be finite and "
-                           "non-negative, fake_edges non-negative");
+                           "non-negative, fake_edges non-negative, refresh_interval positive");
     }
     const Eigen::Index n = mesh.V.rows();
     detail::require_mask_size(fixed_, n, kCaller);
+    if (impl_->ready && impl_->G.rows() == 3 * n && impl_->fixed_vertices == fixed_ &&
+        ++impl_->updates_since_build < options_.refresh_interval) {
+        return;  // G of a few steps ago: still SPD, so its gradient still descends
+    }
+    impl_->updates_since_build = 0;
     impl_->ready = false;
 
     const Eigen::VectorXd masses = detail::floored_lumped_masses(mesh, MassType::Barycentric);

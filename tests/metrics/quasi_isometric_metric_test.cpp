@@ -143,6 +143,31 @@ TEST(QuasiIsometricMetric, GradientInvertsApplyAndKeepsFixedVerticesStill) {
     EXPECT_GT(g.row(1).norm(), 0.0);
 }
 
+// With refresh_interval k, G is that of the last rebuild for k − 1 updates, then follows the mesh.
+TEST(QuasiIsometricMetric, RebuildsEveryRefreshInterval) {
+    TriangleMesh mesh = test::noisy_icosphere(1, 0.15);
+    QuasiIsometricMetric lagged({.rigidity_length = 0.3, .refresh_interval = 3});
+    QuasiIsometricMetric exact({.rigidity_length = 0.3});
+    lagged.update(mesh);
+    const Eigen::SparseMatrix<double> first = lagged.matrix();
+    for (int update = 1; update <= 3; ++update) {
+        mesh.V *= 1.1;
+        lagged.update(mesh);
+        exact.update(mesh);
+        const double lag = (Eigen::MatrixXd(lagged.matrix()) - Eigen::MatrixXd(first)).norm();
+        const double gap =
+            (Eigen::MatrixXd(lagged.matrix()) - Eigen::MatrixXd(exact.matrix())).norm();
+        if (update < 3) {
+            EXPECT_EQ(lag, 0.0) << update;
+            EXPECT_GT(gap, 0.0) << update;
+        } else {
+            EXPECT_EQ(gap, 0.0);
+        }
+    }
+    const VertexField U = random_field(mesh.V.rows(), 8);
+    EXPECT_LT((lagged.gradient(lagged.apply(U)) - U).norm(), 1e-10 * U.norm());
+}
+
 TEST(QuasiIsometricMetric, ImplicitStepSolvesTheShiftedSystem) {
     const TriangleMesh mesh = test::noisy_icosphere(1, 0.15);
     QuasiIsometricMetric metric({.rigidity_length = 0.3});
@@ -185,6 +210,8 @@ TEST(QuasiIsometricMetric, RefusesBadOptionsAndMisuse) {
     EXPECT_THROW(negative.update(mesh), InvalidInput);
     QuasiIsometricMetric not_finite({.rigidity_length = std::nan("")});
     EXPECT_THROW(not_finite.update(mesh), InvalidInput);
+    QuasiIsometricMetric never({.refresh_interval = 0});
+    EXPECT_THROW(never.update(mesh), InvalidInput);
     QuasiIsometricMetric metric;
     EXPECT_THROW((void)metric.gradient(VertexField::Zero(mesh.V.rows(), 3)), InvalidInput);
     metric.update(mesh);

@@ -24,6 +24,10 @@ struct QuasiIsometricOptions {
     int fake_edges = 0;
     /// β: the weight of a fake edge relative to a mesh edge of the same length and mass.
     double fake_edge_weight = 1;
+    /// Rebuild and refactor G at every `refresh_interval`-th update() only; in between, G of
+    /// the last rebuild stays in force. Any SPD G gives a descent direction, so a flow still
+    /// descends; 1 = the metric of SPEC.md §7 at every step.
+    int refresh_interval = 1;
 };
 
 /// The quasi-isometric metric of SPEC.md §7: for fields U, V,
