@@ -158,6 +158,12 @@ void register_match_command(CLI::App& app) {
         ->check(CLI::Range(0.5, 1000.0))
         ->capture_default_str();
     command
+        ->add_option("--coarse-epsilon", options->match.coarse_epsilon,
+                     "Flow the first half of the coarsest level with an ε this many times "
+                     "larger (a smoother distance; 1 = off)")
+        ->check(CLI::Range(1.0, 100.0))
+        ->capture_default_str();
+    command
         ->add_option("--rigidity-length", options->match.isometric.rigidity_length,
                      "Isometric prior: patches smaller than this fraction of the diagonal keep "
                      "their edge lengths")

@@ -60,11 +60,11 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         !detail::finite_at_least(options.stagnation_tolerance, 0) ||
         options.alignment_candidates < 1 || !detail::finite_above(options.h1_length, 0) ||
         options.fine_iterations < 0 || options.levels < 0 || options.coarse_vertices < 100 ||
-        options.selection_iterations < 0) {
+        options.selection_iterations < 0 || !detail::finite_at_least(options.coarse_epsilon, 1)) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
-            "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0 "
-            "and coarse_vertices >= 100");
+            "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
+            "coarse_vertices >= 100 and coarse_epsilon >= 1");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -196,9 +196,13 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     const auto flow_level = [&](int l, const TriangleMesh& moved, int iterations,
                                 const Similarity& placement) {
         const Level& level = pyramid[static_cast<std::size_t>(l)];
-        const PseudoHausdorffEnergy energy(level.target, {.alpha = options.alpha,
-                                                          .epsilon = mean_edge_length(level.target),
-                                                          .truncation = options.truncation});
+        const auto distance_to_target = [&](double epsilon_factor) {
+            return PseudoHausdorffEnergy(
+                level.target, {.alpha = options.alpha,
+                               .epsilon = epsilon_factor * mean_edge_length(level.target),
+                               .truncation = options.truncation});
+        };
+        const PseudoHausdorffEnergy energy = distance_to_target(1);
         std::optional<PartModel> parts;
         if (options.parts) {  // this level's weights, joints moved with the template
             parts = restrict_to(*options.parts, level.original_vertex);
@@ -221,6 +225,18 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 cancelled = cancelled || !go_on;
                 return go_on;
             };
+        }
+        if (l == count - 1 && options.coarse_epsilon != 1) {
+            // First half with the smoother d_H of a larger ε, then the level's own ε; the
+            // energies reported are all of the latter.
+            descent.max_steps = iterations / 2;
+            const FlowResult smooth = gradient_descent(
+                moved, distance_to_target(options.coarse_epsilon), *metric, descent);
+            descent.max_steps = iterations - smooth.steps;
+            FlowResult flow = gradient_descent(smooth.mesh, energy, *metric, descent);
+            flow.steps += smooth.steps;
+            flow.energy.insert(flow.energy.begin(), energy.value(moved));
+            return flow;
         }
         return gradient_descent(moved, energy, *metric, descent);
     };

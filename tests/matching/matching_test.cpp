@@ -281,6 +281,24 @@ TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
     EXPECT_LT(strain(isometric), 0.7 * strain(l2));   // 0.034 against 0.060
 }
 
+// The ε schedule flows half the coarsest level with a larger ε; what it reports is the level's
+// own d_H, from the same start as without the schedule, and it still ends on the target.
+TEST(Match, EpsilonScheduleEndsOnTheTargetAndReportsTheLevelsOwnDistance) {
+    const TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target = make_limb(4, 9);
+    target.V = bend_at_joints(target.V, {{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}});
+    MatchOptions options;
+    options.align = false;
+    const MatchResult plain = match(template_mesh, target, options);
+    options.coarse_epsilon = 3;
+    const MatchResult scheduled = match(template_mesh, target, options);
+    ASSERT_EQ(scheduled.levels.size(), 1U);
+    EXPECT_DOUBLE_EQ(scheduled.levels[0].energy_start, plain.levels[0].energy_start);
+    EXPECT_LE(scheduled.levels[0].iterations, options.max_iterations);
+    EXPECT_LT(scheduled.hausdorff_energy, 1.5 * plain.hausdorff_energy)
+        << scheduled.hausdorff_energy << " " << plain.hausdorff_energy;
+}
+
 TEST(Match, RejectsBadInput) {
     const TriangleMesh mesh = make_limb(2);
     EXPECT_THROW((void)match(mesh, TriangleMesh{}), InvalidInput);
@@ -296,6 +314,9 @@ TEST(Match, RejectsBadInput) {
     MatchOptions no_step;
     no_step.max_step = 0;
     EXPECT_THROW((void)match(mesh, mesh, no_step), InvalidInput);
+    MatchOptions sharper;
+    sharper.coarse_epsilon = 0.5;
+    EXPECT_THROW((void)match(mesh, mesh, sharper), InvalidInput);
 }
 
 TEST(Correspondence, ClosestPointsLieOnTheTarget) {
