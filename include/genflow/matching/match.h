@@ -61,9 +61,12 @@ struct MatchOptions {
     /// generated demo limb (articulated, 6 candidates) 2.5 → 4.4 % (12.5 % at 3): it moves
     /// matches between basins, not always towards the right one, so it is off by default.
     double coarse_epsilon = 1;
-    /// At most this many steps on the coarsest level, and on each finer one.
+    /// At most this many steps on the coarsest level, and on each finer one. The finer levels
+    /// only polish the carried-over match: 15 steps instead of 40 left the mean correspondence
+    /// error unchanged to ±0.05 % (wolf, centaur, FAUST, makehuman body) and the mean surface
+    /// distance within ±0.05 % of the diagonal, at half the time (TOSCA cat 28K: 17.8 → 7.5 s).
     int max_iterations = 300;
-    int fine_iterations = 40;
+    int fine_iterations = 15;
     /// No vertex moves farther than this fraction of the target's bounding-box diagonal in one
     /// step (SPEC.md §9: 2 %).
     double max_step = 0.02;
