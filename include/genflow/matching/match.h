@@ -63,8 +63,9 @@ struct MatchOptions {
     double coarse_epsilon = 1;
     /// At most this many steps on the coarsest level, and on each finer one. The finer levels
     /// only polish the carried-over match: 15 steps instead of 40 left the mean correspondence
-    /// error unchanged to ±0.05 % (wolf, centaur, FAUST, makehuman body) and the mean surface
-    /// distance within ±0.05 % of the diagonal, at half the time (TOSCA cat 28K: 17.8 → 7.5 s).
+    /// error unchanged to ±0.1 % without parts (all pairs of docs/eval/results.md; articulated
+    /// makehuman body 3.1 → 3.5 %) and the mean surface distance within ±0.1 % of the
+    /// diagonal, at half the time (TOSCA cat 28K, h1: 17.8 → 7.5 s).
     int max_iterations = 300;
     int fine_iterations = 15;
     /// No vertex moves farther than this fraction of the target's bounding-box diagonal in one
