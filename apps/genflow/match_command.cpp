@@ -179,6 +179,8 @@ void register_match_command(CLI::App& app) {
                      "Rigid starts flowed on the coarsest level; the lowest d_H goes on")
         ->check(CLI::Range(1, 24))
         ->capture_default_str();
+    command->add_flag("--implicit", options->match.implicit,
+                      "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
     command->add_flag("--no-align", options->no_align,
                       "Skip the global rigid alignment (the inputs are already aligned)");
     command->add_option("--correspondence", options->correspondence,

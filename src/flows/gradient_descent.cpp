@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "genflow/exceptions.h"
@@ -57,15 +58,24 @@ FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy, Metr
             result.status = FlowStatus::Converged;
             break;
         }
-        VertexField g;
+        VertexField differential;
+        VertexField g;  // the explicit gradient G⁻¹ dE/dX
         double slope = 0;
+        std::optional<Linearization> linearization;
         try {
             if (result.steps > 0) {
                 metric.update(result.mesh);
             }
-            const VertexField differential = energy.differential(result.mesh);
+            differential = energy.differential(result.mesh);
             g = metric.gradient(differential);
             slope = (differential.array() * g.array()).sum();  // ‖g‖²_G
+            if (options.implicit) {
+                linearization = energy.linearize(result.mesh);
+                if (!linearization) {
+                    throw InvalidInput(
+                        "gradient_descent: implicit steps need an energy with linearize()");
+                }
+            }
         } catch (const SolverError& e) {
             result.status = FlowStatus::SolverFailed;
             result.message = e.what();
@@ -82,16 +92,34 @@ FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy, Metr
             result.status = FlowStatus::Converged;  // a stationary point
             break;
         }
+        // Explicit: the direction is g for every τ, capped so no vertex moves farther than
+        // max_displacement. Implicit: the direction (G + τA)⁻¹ dE/dX depends on τ and shrinks
+        // as τ grows, so τ may grow past the explicit cap; the displacement is checked per τ.
         const double cap = options.max_displacement / largest;
-        double tau = step_size > 0 ? std::min(2 * step_size, cap) : cap;
+        double tau =
+            step_size > 0 ? (options.implicit ? 2 * step_size : std::min(2 * step_size, cap)) : cap;
         TriangleMesh trial = result.mesh;
         bool accepted = false;
         double trial_value = value;
         for (int halving = 0; halving <= kMaxHalvings; ++halving, tau /= 2) {
-            trial.V = result.mesh.V - tau * g;
+            VertexField direction = g;
+            double decrease = slope;
+            if (options.implicit) {
+                try {
+                    direction = metric.shifted_gradient(linearization->A, tau, differential);
+                } catch (const SolverError&) {
+                    continue;  // a smaller τ is closer to the explicit step
+                }
+                decrease = (differential.array() * direction.array()).sum();
+                if (!(tau * direction.rowwise().norm().maxCoeff() <= options.max_displacement) ||
+                    !(decrease > 0)) {
+                    continue;
+                }
+            }
+            trial.V = result.mesh.V - tau * direction;
             trial_value = energy.value(trial);
             // Strictly lower, too: a step too small to change E in floating point is no step.
-            if (std::isfinite(trial_value) && trial_value <= value - kArmijo * tau * slope &&
+            if (std::isfinite(trial_value) && trial_value <= value - kArmijo * tau * decrease &&
                 trial_value < value) {
                 accepted = true;
                 break;

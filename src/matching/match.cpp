@@ -217,7 +217,8 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         DescentOptions descent{.max_displacement = options.max_step * diagonal,
                                .max_steps = iterations,
                                .stagnation_tolerance = options.stagnation_tolerance,
-                               .stagnation_window = 20};
+                               .stagnation_window = 20,
+                               .implicit = options.implicit};
         if (options.progress) {
             descent.progress = [&, l](const FlowProgress& p) {
                 const bool go_on =

@@ -54,14 +54,15 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(directory / "summary.json")), json);
 }
 
-TEST(MatchCli, RunsTheIsometricPriorWithItsOptions) {
+TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
     const test::TemporaryDirectory directory;
     write_mesh(directory / "template.ply", make_limb(2));
     write_mesh(directory / "target.ply", make_limb(3, 4));
     const std::string command = "match " + quoted(directory / "template.ply") + " " +
                                 quoted(directory / "target.ply") + " -o " +
                                 quoted(directory / "out.ply") + " --prior isometric --no-align";
-    const auto result = run_genflow(command + " --rigidity-length 0.3 --fake-edges 20 --json");
+    const auto result =
+        run_genflow(command + " --rigidity-length 0.3 --fake-edges 20 --implicit --json");
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto json = nlohmann::json::parse(result.out);
     EXPECT_EQ(json["prior"], "isometric");

@@ -26,6 +26,11 @@ struct DescentOptions {
     double target_energy = -std::numeric_limits<double>::infinity();
     /// Stop after this much wall time, checked after every step.
     double max_seconds = std::numeric_limits<double>::infinity();
+    /// Implicit steps (paper eq. 11, SPEC.md §9): X ← X − τ (G + τA)⁻¹ dE/dX with A from the
+    /// energy's linearization (for d_H, A = diag Σ_j c_ij), the same backtracking on τ. As τ
+    /// grows the step tends to a prior-regularized projection instead of overshooting, so
+    /// steps may be longer. Needs an energy with `linearize()`.
+    bool implicit = false;
     /// Called after every accepted step; return false to stop (status Cancelled). Optional.
     std::function<bool(const FlowProgress&)> progress = {};
 };
@@ -41,8 +46,8 @@ struct DescentOptions {
 /// target energy; otherwise as FlowStatus says.
 ///
 /// \throws InvalidInput if the options are invalid (max_displacement not positive and finite,
-///         max_steps < 0, a negative tolerance or window, max_seconds ≤ 0) or the metric
-///         refuses the mesh.
+///         max_steps < 0, a negative tolerance or window, max_seconds ≤ 0), the metric
+///         refuses the mesh, or `implicit` is set for an energy without a linearization.
 /// \throws SolverError  if the metric cannot be factored at the input positions.
 [[nodiscard]] FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy,
                                           Metric& metric, const DescentOptions& options);
