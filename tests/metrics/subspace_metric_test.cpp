@@ -9,9 +9,11 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include "genflow/energies/pseudo_hausdorff_energy.h"
 #include "genflow/exceptions.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/metrics/l2_metric.h"
+#include "genflow/operators/mesh_size.h"
 #include "support/test_meshes.h"
 
 namespace genflow {
@@ -102,6 +104,41 @@ TEST(QuasiRigidMetric, BoostsRigidFieldsByOneOverThePenalty) {
     const VertexField shift = VertexField::Ones(mesh.V.rows(), 3);
     const VertexField dT = (shift.array().colwise() * m.array()).matrix();
     EXPECT_LT(test::relative_error(metric.gradient(dT), shift / options.translation), 1e-12);
+}
+
+// Issue 5's check: between a template and a rigidly moved copy (another sampling), the
+// quasi-rigid gradient of d_H is almost a rigid motion, the L2 gradient is not.
+TEST(QuasiRigidMetric, GradientTowardsARigidlyMovedCopyIsNearlyRigid) {
+    const TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target = make_limb(3, 7);
+    const Eigen::Matrix3d turn =
+        Eigen::AngleAxisd(0.15, Eigen::Vector3d(1, 2, 2).normalized()).toRotationMatrix();
+    target.V = (target.V * turn.transpose()).rowwise() + Eigen::RowVector3d(0.2, -0.1, 0.1);
+    const PseudoHausdorffEnergy energy(target, {.alpha = 8, .epsilon = mean_edge_length(target)});
+    const VertexField dE = energy.differential(template_mesh);
+    SubspaceMetric rigid = quasi_rigid_metric();
+    L2Metric l2;
+    rigid.update(template_mesh);
+    l2.update(template_mesh);
+    // The share of a field (in the M norm) outside the span of translations, rotations and
+    // the scaling (which the prior also makes cheap).
+    const Eigen::VectorXd& m = rigid.masses();
+    const std::vector<FieldBlock> blocks = rigid_motion_blocks(template_mesh, m, {});
+    Eigen::MatrixXd basis(3 * template_mesh.V.rows(), 7);
+    basis << blocks[0].fields, blocks[1].fields, blocks[2].fields;
+    const Eigen::VectorXd weights = m.replicate(1, 3).transpose().reshaped();
+    const auto non_rigid_share = [&](const VertexField& field) {
+        const Eigen::VectorXd v = field.transpose().reshaped();
+        const Eigen::MatrixXd Bw = basis.array().colwise() * weights.array();
+        const Eigen::VectorXd coefficients =
+            (basis.transpose() * Bw).ldlt().solve(Bw.transpose() * v);
+        const Eigen::VectorXd rest = v - basis * coefficients;
+        return std::sqrt(rest.dot(weights.cwiseProduct(rest)) / v.dot(weights.cwiseProduct(v)));
+    };
+    const double rigid_share = non_rigid_share(rigid.gradient(dE));
+    const double l2_share = non_rigid_share(l2.gradient(dE));
+    EXPECT_LT(rigid_share, 0.05) << rigid_share << " (L2: " << l2_share << ")";
+    EXPECT_GT(l2_share, 10 * rigid_share);  // measured 0.017 against 0.95
 }
 
 TEST(QuasiRigidMetric, WithNeutralPenaltiesIsTheL2Metric) {
