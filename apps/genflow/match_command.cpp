@@ -32,6 +32,7 @@ struct MatchCommandOptions {
     MatchOptions match;
     bool no_align = false;
     bool json = false;
+    bool quiet = false;
 };
 
 void require_writable_format(const std::string& path) {
@@ -91,7 +92,7 @@ void run_match(const MatchCommandOptions& options) {
         throw InvalidInput("match: --prior articulated needs --parts PARTS.json");
     }
     job.options.align = !options.no_align;
-    job.progress_bar = !options.json;
+    job.progress_bar = !options.json && !options.quiet;
     const nlohmann::json summary = run_match_job(std::move(job));
     if (options.json) {
         std::cout << summary.dump(2) << '\n';
@@ -191,6 +192,8 @@ void register_match_command(CLI::App& app) {
                         "(coarse levels have their own vertex counts)");
     command->add_option("--summary", options->summary, "Write the JSON summary to this file");
     command->add_flag("--json", options->json, "Print the JSON summary instead of text");
+    command->add_flag("--quiet", options->quiet,
+                      "No progress bar (it shows only on a terminal anyway)");
     command->callback([options] { run_match(*options); });
 }
 

@@ -69,6 +69,10 @@ TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
     EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
     const auto refused = run_genflow(command + " --rigidity-length -1");
     EXPECT_NE(refused.exit_code, 0);
+    const auto quiet = run_genflow(command + " --quiet");
+    ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+    EXPECT_NE(quiet.out.find("isometric prior"), std::string::npos) << quiet.out;
+    EXPECT_EQ(quiet.err, "");
 }
 
 TEST(MatchCli, RefusesBadInputAndWritesNothing) {
