@@ -15,6 +15,9 @@ namespace {
 
 constexpr double kArmijo = 1e-4;
 constexpr int kMaxHalvings = 40;
+// Implicit steps may grow past the explicit cap, but not without bound: τ doubling at every
+// accepted step would overflow after ~1000 steps.
+constexpr double kImplicitGrowth = 1e6;
 
 void check_options(const DescentOptions& options) {
     if (!detail::finite_above(options.max_displacement, 0)) {
@@ -96,8 +99,8 @@ FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy, Metr
         // max_displacement. Implicit: the direction (G + τA)⁻¹ dE/dX depends on τ and shrinks
         // as τ grows, so τ may grow past the explicit cap; the displacement is checked per τ.
         const double cap = options.max_displacement / largest;
-        double tau =
-            step_size > 0 ? (options.implicit ? 2 * step_size : std::min(2 * step_size, cap)) : cap;
+        const double longest_tau = options.implicit ? kImplicitGrowth * cap : cap;
+        double tau = step_size > 0 ? std::min(2 * step_size, longest_tau) : cap;
         TriangleMesh trial = result.mesh;
         bool accepted = false;
         double trial_value = value;
