@@ -28,6 +28,32 @@ namespace {
 
 constexpr double kDegree = std::numbers::pi / 180;
 
+// The generated limb and another sampling of it bent by 35° at x = 1, with the ground truth
+// of every template vertex; errors are mean distances to it over the target's diagonal.
+struct BentLimbPair {
+    TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target = make_limb(4, 9);
+    Eigen::MatrixX3d truth;
+    double diagonal = 0;
+
+    BentLimbPair() {
+        const std::vector<Joint> bend{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}};
+        target.V = bend_at_joints(target.V, bend);
+        truth = bend_at_joints(template_mesh.V, bend);
+        diagonal = bounding_box_diagonal(target);
+    }
+    [[nodiscard]] double error(const Eigen::MatrixX3d& positions) const {
+        return (positions - truth).rowwise().norm().mean() / diagonal;
+    }
+    [[nodiscard]] double error(const MatchResult& result) const { return error(result.deformed.V); }
+};
+
+void expect_strictly_decreasing(const std::vector<double>& energy) {
+    for (std::size_t k = 1; k < energy.size(); ++k) {
+        EXPECT_LT(energy[k], energy[k - 1]) << k;
+    }
+}
+
 Similarity some_similarity() {
     Similarity s;
     s.rotation = Eigen::AngleAxisd(2.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
@@ -47,10 +73,7 @@ TEST(GradientDescent, DecreasesTheEnergyAtEveryStepAndStops) {
         {.max_displacement = 0.02 * bounding_box_diagonal(target), .max_steps = 200});
     ASSERT_TRUE(result.ok());
     ASSERT_GE(result.steps, 5);
-
-    for (std::size_t k = 1; k < result.energy.size(); ++k) {
-        EXPECT_LT(result.energy[k], result.energy[k - 1]) << k;
-    }
+    expect_strictly_decreasing(result.energy);
     EXPECT_LT(result.energy.back(), 0.7 * result.energy.front());
     EXPECT_EQ(result.status, FlowStatus::Converged);
     EXPECT_THROW((void)gradient_descent(moving, energy, metric, {}), InvalidInput);
@@ -84,9 +107,7 @@ TEST(GradientDescent, ImplicitStepsDescendWithinTheCapInFewerSteps) {
     EXPECT_LE(longest_move, cap * (1 + 1e-12));
     ASSERT_TRUE(implicit_flow.ok());
     ASSERT_GE(implicit_flow.steps, 3);
-    for (std::size_t k = 1; k < implicit_flow.energy.size(); ++k) {
-        EXPECT_LT(implicit_flow.energy[k], implicit_flow.energy[k - 1]) << k;
-    }
+    expect_strictly_decreasing(implicit_flow.energy);
     EXPECT_LT(implicit_flow.energy.back(), 0.3 * implicit_flow.energy.front());
     // Explicit steps are capped and crawl (measured: 150 steps, not converged); implicit ones
     // converge (35) to a distance as low (0.130 against 0.133).
@@ -267,39 +288,24 @@ TEST(Match, CarriesTheCoarseMatchToTheInputResolution) {
 }
 
 TEST(Match, ArticulatedPriorFollowsABendTheRigidPriorCannot) {
-    const TriangleMesh template_mesh = make_limb(3);
-    TriangleMesh target = make_limb(4, 9);
-    const std::vector<Joint> bend{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}};
-    target.V = bend_at_joints(target.V, bend);
-    const Eigen::MatrixX3d truth = bend_at_joints(template_mesh.V, bend);
-    const double diagonal = bounding_box_diagonal(target);
-    const auto error = [&](const MatchResult& r) {
-        return (r.deformed.V - truth).rowwise().norm().mean() / diagonal;
-    };
+    const BentLimbPair pair;
     MatchOptions options;
     options.prior = MatchPrior::Articulated;
     options.align = false;
-    options.parts = two_part_arm(template_mesh);
-    const MatchResult articulated = match(template_mesh, target, options);
+    options.parts = two_part_arm(pair.template_mesh);
+    const MatchResult articulated = match(pair.template_mesh, pair.target, options);
     options.prior = MatchPrior::Rigid;
-    const MatchResult rigid = match(template_mesh, target, options);
-    const double start = (template_mesh.V - truth).rowwise().norm().mean() / diagonal;
-    EXPECT_LT(error(articulated), 0.6 * start);  // measured 0.016 from 0.036
-    EXPECT_LT(error(articulated), 0.5 * error(rigid));
+    const MatchResult rigid = match(pair.template_mesh, pair.target, options);
+    const double start = pair.error(pair.template_mesh.V);
+    EXPECT_LT(pair.error(articulated), 0.6 * start);  // measured 0.016 from 0.036
+    EXPECT_LT(pair.error(articulated), 0.5 * pair.error(rigid));
 }
 
 // Without parts, the quasi-isometric prior follows the bend while keeping edge lengths better
 // than L2 (which slides) and bending where the quasi-rigid prior cannot.
 TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
-    const TriangleMesh template_mesh = make_limb(3);
-    TriangleMesh target = make_limb(4, 9);
-    const std::vector<Joint> bend{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}};
-    target.V = bend_at_joints(target.V, bend);
-    const Eigen::MatrixX3d truth = bend_at_joints(template_mesh.V, bend);
-    const double diagonal = bounding_box_diagonal(target);
-    const auto error = [&](const MatchResult& r) {
-        return (r.deformed.V - truth).rowwise().norm().mean() / diagonal;
-    };
+    const BentLimbPair pair;
+    const TriangleMesh& template_mesh = pair.template_mesh;
     const Eigen::MatrixX2i edges = unique_edges(template_mesh.F);
     const auto strain = [&](const MatchResult& r) {  // mean |ℓ'/ℓ − 1| over the edges
         double sum = 0;
@@ -316,29 +322,27 @@ TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
     options.align = false;
     options.prior = MatchPrior::Isometric;
     options.isometric.refresh_interval = 1;  // the prior itself, not its faster lagged form
-    const MatchResult isometric = match(template_mesh, target, options);
+    const MatchResult isometric = match(template_mesh, pair.target, options);
     options.prior = MatchPrior::L2;
-    const MatchResult l2 = match(template_mesh, target, options);
+    const MatchResult l2 = match(template_mesh, pair.target, options);
     options.prior = MatchPrior::Rigid;
-    const MatchResult rigid = match(template_mesh, target, options);
-    const double start = (template_mesh.V - truth).rowwise().norm().mean() / diagonal;
-    EXPECT_LT(error(isometric), 0.8 * start);         // measured 0.026 from 0.036
-    EXPECT_LT(error(isometric), 0.8 * error(rigid));  // 0.040
-    EXPECT_LT(error(isometric), error(l2));           // 0.030
-    EXPECT_LT(strain(isometric), 0.7 * strain(l2));   // 0.034 against 0.060
+    const MatchResult rigid = match(template_mesh, pair.target, options);
+    const double start = pair.error(template_mesh.V);
+    EXPECT_LT(pair.error(isometric), 0.8 * start);              // measured 0.026 from 0.036
+    EXPECT_LT(pair.error(isometric), 0.8 * pair.error(rigid));  // 0.040
+    EXPECT_LT(pair.error(isometric), pair.error(l2));           // 0.030
+    EXPECT_LT(strain(isometric), 0.7 * strain(l2));             // 0.034 against 0.060
 }
 
 // The ε schedule flows half the coarsest level with a larger ε; what it reports is the level's
 // own d_H, from the same start as without the schedule, and it still ends on the target.
 TEST(Match, EpsilonScheduleEndsOnTheTargetAndReportsTheLevelsOwnDistance) {
-    const TriangleMesh template_mesh = make_limb(3);
-    TriangleMesh target = make_limb(4, 9);
-    target.V = bend_at_joints(target.V, {{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}});
+    const BentLimbPair pair;
     MatchOptions options;
     options.align = false;
-    const MatchResult plain = match(template_mesh, target, options);
+    const MatchResult plain = match(pair.template_mesh, pair.target, options);
     options.coarse_epsilon = 3;
-    const MatchResult scheduled = match(template_mesh, target, options);
+    const MatchResult scheduled = match(pair.template_mesh, pair.target, options);
     ASSERT_EQ(scheduled.levels.size(), 1U);
     EXPECT_DOUBLE_EQ(scheduled.levels[0].energy_start, plain.levels[0].energy_start);
     EXPECT_LE(scheduled.levels[0].iterations, options.max_iterations);
