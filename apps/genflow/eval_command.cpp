@@ -151,7 +151,7 @@ void register_eval_command(CLI::App& app) {
     command
         ->add_option("--priors", options->priors, "Priors to run (articulated: pairs with parts)")
         ->delimiter(',')
-        ->check(CLI::IsMember({"l2", "h1", "rigid", "articulated", "isometric"}))
+        ->check(CLI::IsMember(match_prior_names()))
         ->capture_default_str();
     command->add_option("--pairs", options->only, "Only these pairs (names)")->delimiter(',');
     command->add_option("--data-dir", options->data_dir,

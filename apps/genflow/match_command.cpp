@@ -129,7 +129,7 @@ void register_match_command(CLI::App& app) {
                      "(parts turn about their joints; needs --parts), isometric (bends "
                      "freely, resists local stretching). Default: articulated with --parts, "
                      "else h1")
-        ->check(CLI::IsMember({"l2", "h1", "rigid", "articulated", "isometric"}));
+        ->check(CLI::IsMember(match_prior_names()));
     command->add_option("--parts", options->parts,
                         "Part tree of the template (JSON; layouts in the README)");
     command->add_option("--part-labels", options->part_labels,

@@ -33,9 +33,16 @@ const char* to_string(MatchPrior prior) {
     return "unknown";
 }
 
+std::vector<std::string> match_prior_names() {
+    std::vector<std::string> names;
+    for (const MatchPrior prior : kMatchPriors) {
+        names.emplace_back(to_string(prior));
+    }
+    return names;
+}
+
 std::optional<MatchPrior> parse_match_prior(const std::string& name) {
-    for (const MatchPrior prior : {MatchPrior::L2, MatchPrior::H1, MatchPrior::Rigid,
-                                   MatchPrior::Articulated, MatchPrior::Isometric}) {
+    for (const MatchPrior prior : kMatchPriors) {
         if (name == to_string(prior)) {
             return prior;
         }

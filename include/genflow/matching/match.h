@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -24,8 +25,15 @@ enum class MatchPrior {
     Isometric,    ///< quasi-isometric (SPEC.md §7): bends freely, resists local stretching
 };
 
+/// Every prior, in declaration order.
+inline constexpr std::array<MatchPrior, 5> kMatchPriors{MatchPrior::L2, MatchPrior::H1,
+                                                        MatchPrior::Rigid, MatchPrior::Articulated,
+                                                        MatchPrior::Isometric};
+
 /// "l2", "h1", "rigid", "articulated", "isometric".
 [[nodiscard]] const char* to_string(MatchPrior prior);
+/// The names of kMatchPriors (for command-line choices).
+[[nodiscard]] std::vector<std::string> match_prior_names();
 /// The prior named by `name` (as to_string() spells it), or nothing.
 [[nodiscard]] std::optional<MatchPrior> parse_match_prior(const std::string& name);
 
