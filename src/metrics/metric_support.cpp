@@ -59,4 +59,15 @@ void copy_fixed_rows(VertexField& result, const VertexField& input,
     }
 }
 
+using RowField = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+Eigen::VectorXd interleave(const VertexField& field) {
+    const RowField rows = field;
+    return Eigen::Map<const Eigen::VectorXd>(rows.data(), rows.size());
+}
+
+VertexField deinterleave(const Eigen::VectorXd& vector) {
+    return Eigen::Map<const RowField>(vector.data(), vector.size() / 3, 3);
+}
+
 }  // namespace genflow::detail

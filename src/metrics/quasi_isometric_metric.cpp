@@ -18,18 +18,6 @@ namespace genflow {
 
 namespace {
 
-using RowField = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-
-// A #V×3 field as the 3n vector of G (vertex i in entries 3i..3i+2), and back.
-Eigen::VectorXd interleave(const VertexField& field) {
-    const RowField rows = field;
-    return Eigen::Map<const Eigen::VectorXd>(rows.data(), rows.size());
-}
-
-VertexField deinterleave(const Eigen::VectorXd& vector) {
-    return Eigen::Map<const RowField>(vector.data(), vector.size() / 3, 3);
-}
-
 // Adds the 3×3 blocks of the edge term w·(a aᵀ)⊗(d dᵀ), a = e_i − e_j.
 void add_edge_blocks(std::vector<Eigen::Triplet<double>>& triplets, int i, int j,
                      const Eigen::Vector3d& d, double weight) {
@@ -255,7 +243,7 @@ VertexField QuasiIsometricMetric::gradient(const VertexField& dEdX) const {
     }
     detail::require_rows(dEdX, impl_->G.rows() / 3, "QuasiIsometricMetric::gradient");
     const VertexField rhs = detail::zero_fixed_rows(dEdX, impl_->fixed_vertices);
-    return deinterleave(impl_->metric_solver.solve(interleave(rhs)).col(0));
+    return detail::deinterleave(impl_->metric_solver.solve(detail::interleave(rhs)).col(0));
 }
 
 VertexField QuasiIsometricMetric::apply(const VertexField& U) const {
@@ -263,7 +251,7 @@ VertexField QuasiIsometricMetric::apply(const VertexField& U) const {
         throw InvalidInput("QuasiIsometricMetric::apply: update() was not called");
     }
     detail::require_rows(U, impl_->G.rows() / 3, "QuasiIsometricMetric::apply");
-    return deinterleave(impl_->G * interleave(U));
+    return detail::deinterleave(impl_->G * detail::interleave(U));
 }
 
 VertexField QuasiIsometricMetric::shifted_gradient(const Eigen::SparseMatrix<double>& A, double dt,
@@ -297,7 +285,7 @@ VertexField QuasiIsometricMetric::shifted_gradient(const Eigen::SparseMatrix<dou
     detail::pin_fixed(shifted, impl_->fixed_coordinates);
     impl_->shifted_solver.compute(shifted, kCaller);
     const VertexField rhs = detail::zero_fixed_rows(R, impl_->fixed_vertices);
-    return deinterleave(impl_->shifted_solver.solve(interleave(rhs)).col(0));
+    return detail::deinterleave(impl_->shifted_solver.solve(detail::interleave(rhs)).col(0));
 }
 
 const Eigen::SparseMatrix<double>& QuasiIsometricMetric::matrix() const {

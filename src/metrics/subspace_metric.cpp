@@ -14,18 +14,6 @@ namespace genflow {
 
 namespace {
 
-using RowField = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-
-// A vertex field as the 3n vector of SPEC.md §6 (vertex i in rows 3i..3i+2), and back.
-Eigen::VectorXd flatten(const VertexField& field) {
-    const RowField rows = field;
-    return Eigen::Map<const Eigen::VectorXd>(rows.data(), rows.size());
-}
-
-VertexField unflatten(const Eigen::VectorXd& flat) {
-    return Eigen::Map<const RowField>(flat.data(), flat.size() / 3, 3);
-}
-
 // √m_i repeated for the three rows of vertex i.
 Eigen::VectorXd row_sqrt_masses(const Eigen::VectorXd& masses) {
     Eigen::VectorXd s(3 * masses.size());
@@ -127,23 +115,23 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
 VertexField SubspaceMetric::gradient(const VertexField& dEdX) const {
     detail::require_rows(dEdX, masses_.size(), "SubspaceMetric::gradient");
     // G⁻¹d = M⁻¹d + Σ (1/μ − 1) M^{-1/2} Q̃ Q̃ᵀ M^{-1/2} d.
-    const Eigen::VectorXd r = flatten(dEdX).cwiseQuotient(sqrt_mass_);
+    const Eigen::VectorXd r = detail::interleave(dEdX).cwiseQuotient(sqrt_mass_);
     Eigen::VectorXd g = r;
     for (const FieldBlock& block : blocks_) {
         g += (1 / block.penalty - 1) * (block.fields * (block.fields.transpose() * r));
     }
-    return unflatten(g.cwiseQuotient(sqrt_mass_));
+    return detail::deinterleave(g.cwiseQuotient(sqrt_mass_));
 }
 
 VertexField SubspaceMetric::apply(const VertexField& U) const {
     detail::require_rows(U, masses_.size(), "SubspaceMetric::apply");
     // G u = M u + Σ (μ − 1) M^{1/2} Q̃ Q̃ᵀ M^{1/2} u.
-    const Eigen::VectorXd r = flatten(U).cwiseProduct(sqrt_mass_);
+    const Eigen::VectorXd r = detail::interleave(U).cwiseProduct(sqrt_mass_);
     Eigen::VectorXd result = r;
     for (const FieldBlock& block : blocks_) {
         result += (block.penalty - 1) * (block.fields * (block.fields.transpose() * r));
     }
-    return unflatten(result.cwiseProduct(sqrt_mass_));
+    return detail::deinterleave(result.cwiseProduct(sqrt_mass_));
 }
 
 VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& A, double dt,
@@ -194,9 +182,9 @@ VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& 
             column += block.fields.cols();
         }
     }
-    const Eigen::VectorXd Er = E_inverse_times(flatten(R));
+    const Eigen::VectorXd Er = E_inverse_times(detail::interleave(R));
     if (columns == 0) {
-        return unflatten(Er);
+        return detail::deinterleave(Er);
     }
     const Eigen::MatrixXd EU = E_inverse_times(U);
     Eigen::MatrixXd capacitance = U.transpose() * EU;
@@ -209,7 +197,7 @@ VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& 
     if (!detail::all_finite(result)) {
         throw SolverError("SubspaceMetric::shifted_gradient: non-finite solution");
     }
-    return unflatten(result);
+    return detail::deinterleave(result);
 }
 
 std::vector<FieldBlock> rigid_motion_blocks(const TriangleMesh& mesh, const Eigen::VectorXd& masses,
