@@ -143,19 +143,73 @@ struct Parameters {
 
 using Neighbours = detail::NeighbourList;
 
+// A tighter radius than D's for the query at x (see gather_within_radius), from where the weight
+// actually lies: D's bound puts all of W at the radius. With shells [ρ_k, ρ_{k+1}), ρ_k = k·h,
+// around x, φ(r) = (r² + ε²)^{−α} decreasing, and M_k the weight at distances in [ρ_K, ρ_{k+1}),
+// Abel summation bounds the terms beyond ρ_K by
+//     Σ_{k≥K} (φ(ρ_k) − φ(ρ_{k+1})) M_k  ≤  Σ_{K≤k<E} (φ_k − φ_{k+1}) min(W, B_k) + φ_E W,
+// where B_k, the weight of the cells within ⌈ρ_{k+1}/cell⌉ rings of x's cell, holds every point
+// closer than ρ_{k+1}. The smallest K for which this is ≤ W D^{−α} (≤ τ f_u, as above) gives the
+// radius ρ_K; E, the first shell with ρ_E² + ε² ≥ D, has φ_E W ≤ W D^{−α} already. The sums
+// run in units of W D^{−α}, ψ_k = (D/(ρ_k² + ε²))^α, and stop before they could overflow.
+// Returns +inf when no shell can be dropped.
+double shell_radius2(const detail::PointGrid& grid, const Eigen::Vector3d& x, double D,
+                     const Parameters& p, double total_weight) {
+    constexpr int kShellsPerCell = 4;
+    constexpr double kNoShell = std::numeric_limits<double>::infinity();
+    // Slightly inside the cells, so that rounding cannot put a point closer than ρ_{k+1}
+    // outside the block of ⌈ρ_{k+1}/cell⌉ rings.
+    const double step = grid.cell_size() * (1 - 1e-9) / kShellsPerCell;
+    const double reach2 = D - p.eps2;
+    if (!(reach2 > 0)) {
+        return kNoShell;
+    }
+    constexpr int kMaxShells = 4096;  // beyond, far apart: nearly all of W lies beyond any ρ_K
+    if (!(std::sqrt(reach2) <= kMaxShells * step)) {
+        return kNoShell;
+    }
+    const int end = static_cast<int>(std::ceil(std::sqrt(reach2) / step));
+    const auto log_psi = [&](int k) {
+        const double rho = static_cast<double>(k) * step;
+        return p.alpha * (std::log(D) - std::log(rho * rho + p.eps2));
+    };
+    double tail = std::exp(std::min(log_psi(end), 0.0));  // φ_E W: at most 1
+    double psi_next = tail;
+    int first_kept = end;
+    for (int k = end - 1; k >= 1; --k) {
+        const double log_psi_k = log_psi(k);
+        if (log_psi_k > 600) {
+            break;
+        }
+        const double psi = std::exp(log_psi_k);
+        const int rings = (k + kShellsPerCell) / kShellsPerCell;  // ⌈(k + 1)/kShellsPerCell⌉
+        // (+1e-12: the prefix sums may round a block's weight down.)
+        const double fraction =
+            std::clamp(grid.block_weight(x, rings) / total_weight + 1e-12, 0.0, 1.0);
+        tail += (psi - psi_next) * fraction;
+        if (tail > 1) {
+            break;
+        }
+        psi_next = psi;
+        first_kept = k;
+    }
+    const double rho = static_cast<double>(first_kept) * step;
+    return first_kept == end ? kNoShell : rho * rho;
+}
+
 // The truncation radius (as a squared distance) of the query at x, with the points within it
 // in `found`. Adaptive radius (SPEC.md §8): for any point m at d_m = |x − y_m|² + ε²,
 // weight_m d_m^{−α} ≤ f_u, so everything beyond d = κ_m² d_m adds at most
-// W (κ_m² d_m)^{−α} = τ weight_m d_m^{−α} ≤ τ f_u, with κ_m² = (W/(weight_m τ))^{1/α}. The
-// radius is the smallest κ_m² d_m − ε² over a first small block (at least as tight as the
-// nearest point's); the block of the terms is then as large as the radius needs.
-double gather_within_radius(const detail::PointGrid& grid, const Eigen::Vector3d& x, double eps2,
-                            Neighbours& found) {
+// W (κ_m² d_m)^{−α} = τ weight_m d_m^{−α} ≤ τ f_u, with κ_m² = (W/(weight_m τ))^{1/α}. D, the
+// smallest κ_m² d_m over a first small block, gives a radius; shell_radius2() shrinks it.
+double gather_within_radius(const detail::PointGrid& grid, const Eigen::Vector3d& x,
+                            const Parameters& p, double total_weight, Neighbours& found) {
     double radius2 = std::numeric_limits<double>::infinity();
     for (const int rings : {1, 4, 0}) {
-        const double radius_d = grid.min_scaled_distance(x, rings, eps2);
+        const double radius_d = grid.min_scaled_distance(x, rings, p.eps2);
         if (radius_d < std::numeric_limits<double>::infinity()) {
-            radius2 = (radius_d - eps2) * (1 + 1e-12);
+            radius2 = std::min((radius_d - p.eps2) * (1 + 1e-12),
+                               shell_radius2(grid, x, radius_d, p, total_weight));
             break;  // the last pass, over all points, always finds one
         }
     }
@@ -172,7 +226,7 @@ double visit_terms(const Side& from, const Side& to, const Parameters& p, Eigen:
     const Eigen::Vector3d x = from.points.row(u).transpose();
     const detail::PointGrid& grid = *to.grid;
     if (p.truncation > 0) {
-        gather_within_radius(grid, x, p.eps2, found);
+        gather_within_radius(grid, x, p, to.total_weight, found);
     } else {
         grid.collect_within(x, 0, std::numeric_limits<double>::infinity(), found);
     }

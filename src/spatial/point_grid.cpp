@@ -8,6 +8,7 @@ PointGrid::PointGrid(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weig
     const auto count = static_cast<std::size_t>(points.rows());
     if (count == 0) {
         start_.assign(2, 0);
+        prefix_weight_.assign(8, 0.0);
         return;
     }
     origin_ = points.colwise().minCoeff().transpose();
@@ -58,6 +59,38 @@ PointGrid::PointGrid(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weig
         weight_[slot] = weights[row];
         factor_[slot] = factors[row];
         id_[slot] = static_cast<std::uint32_t>(i);
+    }
+    build_prefix_weights(cell_of, weights);
+}
+
+void PointGrid::build_prefix_weights(const std::vector<std::uint32_t>& cell_of,
+                                     const Eigen::VectorXd& weights) {
+    const auto nx = static_cast<std::size_t>(dims_[0] + 1);
+    const auto ny = static_cast<std::size_t>(dims_[1] + 1);
+    const auto nz = static_cast<std::size_t>(dims_[2] + 1);
+    const auto index = [&](std::size_t x, std::size_t y, std::size_t z) {
+        return (z * ny + y) * nx + x;
+    };
+    prefix_weight_.assign(nx * ny * nz, 0.0);
+    const auto cells_x = static_cast<std::uint32_t>(dims_[0]);
+    const auto cells_y = static_cast<std::uint32_t>(dims_[1]);
+    for (std::size_t i = 0; i < cell_of.size(); ++i) {
+        const std::uint32_t cell = cell_of[i];
+        prefix_weight_[index(cell % cells_x + 1, cell / cells_x % cells_y + 1,
+                             cell / (cells_x * cells_y) + 1)] +=
+            weights[static_cast<Eigen::Index>(i)];
+    }
+    // Running sums along x, then y, then z.
+    const std::array<std::size_t, 3> stride{1, nx, nx * ny};
+    for (const std::size_t step : stride) {
+        for (std::size_t z = 1; z < nz; ++z) {
+            for (std::size_t y = 1; y < ny; ++y) {
+                for (std::size_t x = 1; x < nx; ++x) {
+                    const std::size_t here = index(x, y, z);
+                    prefix_weight_[here] += prefix_weight_[here - step];
+                }
+            }
+        }
     }
 }
 

@@ -115,6 +115,32 @@ public:
         });
     }
 
+    /// The total weight of the points in the block of (2k+1)³ cells around the cell of `query`
+    /// (which may lie outside the grid), in O(1) from prefix sums. Every point within
+    /// k·cell_size() of the query lies in that block.
+    [[nodiscard]] double block_weight(const Eigen::Vector3d& query, int k) const {
+        std::array<std::int64_t, 3> low{};
+        std::array<std::int64_t, 3> high{};
+        for (std::size_t a = 0; a < 3; ++a) {
+            const auto axis = static_cast<Eigen::Index>(a);
+            const std::int64_t cell = cell_floor((query[axis] - origin_[axis]) * inverse_cell_);
+            low[a] = std::max<std::int64_t>(cell - k, 0);
+            high[a] = std::min<std::int64_t>(cell + k, dims_[a] - 1) + 1;
+            if (low[a] >= high[a]) {
+                return 0;
+            }
+        }
+        // Inclusion–exclusion over the corners of the box in the (dims + 1)³ prefix table.
+        const auto at = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+            return prefix_weight_[static_cast<std::size_t>(
+                (z * (dims_[1] + 1) + y) * (dims_[0] + 1) + x)];
+        };
+        return at(high[0], high[1], high[2]) - at(low[0], high[1], high[2]) -
+               at(high[0], low[1], high[2]) - at(high[0], high[1], low[2]) +
+               at(low[0], low[1], high[2]) + at(low[0], high[1], low[2]) +
+               at(high[0], low[1], low[2]) - at(low[0], low[1], low[2]);
+    }
+
     /// The row, in the constructor's matrix, of the point at `slot`.
     [[nodiscard]] std::uint32_t id(std::uint32_t slot) const { return id_[slot]; }
     [[nodiscard]] double weight(std::uint32_t slot) const { return weight_[slot]; }
@@ -124,6 +150,9 @@ public:
 
 private:
     static double square(double v) { return v * v; }
+
+    void build_prefix_weights(const std::vector<std::uint32_t>& cell_of,
+                              const Eigen::VectorXd& weights);
 
     // ⌊v⌋ of a cell coordinate, clamped to ±1e9 (far outside any grid); std::floor is a
     // library call on baseline x86-64 and sits in the innermost setup loop.
@@ -197,6 +226,8 @@ private:
     std::vector<double> weight_;        // per point, in cell order
     std::vector<double> factor_;        // per point, in cell order
     std::vector<std::uint32_t> id_;     // original row, in cell order
+    // Σ weight over the cells [0, x) × [0, y) × [0, z), on a (dims + 1)³ table (x fastest).
+    std::vector<double> prefix_weight_;
 };
 
 }  // namespace genflow::detail

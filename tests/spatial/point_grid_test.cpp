@@ -84,6 +84,39 @@ TEST(PointGrid, MinScaledDistanceCoversItsBlock) {
     }
 }
 
+TEST(PointGrid, BlockWeightHoldsTheBallAndLiesWithinTheBlock) {
+    const Eigen::MatrixX3d points = make_icosphere(3).V;
+    std::mt19937 generator(5);
+    std::uniform_real_distribution<double> uniform(0.1, 2.0);
+    Eigen::VectorXd weights(points.rows());
+    for (Eigen::Index i = 0; i < weights.size(); ++i) {
+        weights[i] = uniform(generator);
+    }
+    const auto weight_within = [&](const Eigen::Vector3d& query, double radius) {
+        double sum = 0;
+        for (Eigen::Index i = 0; i < points.rows(); ++i) {
+            sum += (points.row(i).transpose() - query).norm() < radius ? weights[i] : 0.0;
+        }
+        return sum;
+    };
+    const double cell = 0.15;
+    const PointGrid grid(points, weights, Eigen::VectorXd::Ones(points.rows()), cell);
+    std::uniform_real_distribution<double> position(-1.6, 1.6);  // some queries off the grid
+    for (int trial = 0; trial < 200; ++trial) {
+        const Eigen::Vector3d query(position(generator), position(generator), position(generator));
+        for (const int k : {0, 1, 2, 5}) {
+            const double block = grid.block_weight(query, k);
+            // Every point within k cells is in the block; every point of the block lies within
+            // √3 (k + 1) cells.
+            EXPECT_GE(block, weight_within(query, k * grid.cell_size()) - 1e-12);
+            EXPECT_LE(block,
+                      weight_within(query, std::sqrt(3.0) * (k + 1) * grid.cell_size()) + 1e-12);
+        }
+    }
+    EXPECT_NEAR(grid.block_weight(Eigen::Vector3d::Zero(), 1000), weights.sum(), 1e-10);
+    EXPECT_EQ(grid.block_weight(Eigen::Vector3d(10, 0, 0), 2), 0.0);
+}
+
 TEST(PointGrid, ElongatedSetsKeepTheCellTableLinear) {
     // A needle 1e6 cells long: the grid must enlarge its cells instead of allocating them all.
     Eigen::MatrixX3d points(100, 3);
@@ -105,6 +138,7 @@ TEST(PointGrid, AnEmptySetFindsNothing) {
     EXPECT_TRUE(ids_within(grid, Eigen::Vector3d::Zero(), 0, 1e300, found).empty());
     EXPECT_EQ(grid.min_scaled_distance(Eigen::Vector3d::Zero(), 1, 0),
               std::numeric_limits<double>::infinity());
+    EXPECT_EQ(grid.block_weight(Eigen::Vector3d::Zero(), 3), 0.0);
 }
 
 }  // namespace
