@@ -169,9 +169,10 @@ double shell_radius2(const detail::PointGrid& grid, const Eigen::Vector3d& x, do
         return kNoShell;
     }
     const int end = static_cast<int>(std::ceil(std::sqrt(reach2) / step));
+    const double log_D = std::log(D);
     const auto log_psi = [&](int k) {
         const double rho = static_cast<double>(k) * step;
-        return p.alpha * (std::log(D) - std::log(rho * rho + p.eps2));
+        return p.alpha * (log_D - std::log(rho * rho + p.eps2));
     };
     double tail = std::exp(std::min(log_psi(end), 0.0));  // φ_E W: at most 1
     double psi_next = tail;

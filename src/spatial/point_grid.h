@@ -121,14 +121,11 @@ public:
     [[nodiscard]] double block_weight(const Eigen::Vector3d& query, int k) const {
         std::array<std::int64_t, 3> low{};
         std::array<std::int64_t, 3> high{};
-        for (std::size_t a = 0; a < 3; ++a) {
-            const auto axis = static_cast<Eigen::Index>(a);
-            const std::int64_t cell = cell_floor((query[axis] - origin_[axis]) * inverse_cell_);
-            low[a] = std::max<std::int64_t>(cell - k, 0);
-            high[a] = std::min<std::int64_t>(cell + k, dims_[a] - 1) + 1;
-            if (low[a] >= high[a]) {
-                return 0;
-            }
+        if (!block_cells(query, k, low, high)) {
+            return 0;
+        }
+        for (std::int64_t& end : high) {
+            ++end;  // prefix sums index one past the last cell
         }
         // Inclusion–exclusion over the corners of the box in the (dims + 1)³ prefix table.
         const auto at = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
@@ -162,6 +159,22 @@ private:
         return truncated - (clamped < static_cast<double>(truncated) ? 1 : 0);
     }
 
+    // The cells [low, high] (inclusive, per axis) of the block of k rings around the cell of
+    // `query`, clipped to the grid; false when the block misses the grid.
+    bool block_cells(const Eigen::Vector3d& query, int k, std::array<std::int64_t, 3>& low,
+                     std::array<std::int64_t, 3>& high) const {
+        for (std::size_t a = 0; a < 3; ++a) {
+            const auto axis = static_cast<Eigen::Index>(a);
+            const std::int64_t cell = cell_floor((query[axis] - origin_[axis]) * inverse_cell_);
+            low[a] = std::max<std::int64_t>(cell - k, 0);
+            high[a] = std::min<std::int64_t>(cell + k, dims_[a] - 1);
+            if (low[a] > high[a]) {
+                return false;
+            }
+        }
+        return true;
+    }
+
     // Calls run(begin, end) for the contiguous run of sorted points of each row of cells of
     // the block around `query` (k = 0: one run of all points), leaving out the cells farther
     // than sqrt(radius2) from the query.
@@ -173,14 +186,8 @@ private:
         }
         std::array<std::int64_t, 3> low{};
         std::array<std::int64_t, 3> high{};
-        for (std::size_t a = 0; a < 3; ++a) {
-            const auto axis = static_cast<Eigen::Index>(a);
-            const std::int64_t cell = cell_floor((query[axis] - origin_[axis]) * inverse_cell_);
-            low[a] = std::max<std::int64_t>(cell - k, 0);
-            high[a] = std::min<std::int64_t>(cell + k, dims_[a] - 1);
-            if (low[a] > high[a]) {
-                return;
-            }
+        if (!block_cells(query, k, low, high)) {
+            return;
         }
         // The cells along `axis` that a ball of radius `half` about the query reaches.
         const auto reach = [&](std::size_t axis, double half) {

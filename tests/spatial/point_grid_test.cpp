@@ -27,6 +27,17 @@ std::vector<std::uint32_t> ids_within(const PointGrid& grid, const Eigen::Vector
     return ids;
 }
 
+// `count` values drawn uniformly from [low, high).
+Eigen::VectorXd random_values(Eigen::Index count, double low, double high, unsigned seed) {
+    std::mt19937 generator(seed);
+    std::uniform_real_distribution<double> uniform(low, high);
+    Eigen::VectorXd values(count);
+    for (Eigen::Index i = 0; i < count; ++i) {
+        values[i] = uniform(generator);
+    }
+    return values;
+}
+
 std::vector<std::uint32_t> brute_force_within(const Eigen::MatrixX3d& points,
                                               const Eigen::Vector3d& query, double radius2) {
     std::vector<std::uint32_t> ids;
@@ -59,12 +70,7 @@ TEST(PointGrid, RadiusQueriesEqualBruteForceInsideAndOutsideTheGrid) {
 
 TEST(PointGrid, MinScaledDistanceCoversItsBlock) {
     const Eigen::MatrixX3d points = make_icosphere(3).V;
-    std::mt19937 generator(4);
-    std::uniform_real_distribution<double> uniform(0.5, 2.0);
-    Eigen::VectorXd factors(points.rows());
-    for (Eigen::Index i = 0; i < factors.size(); ++i) {
-        factors[i] = uniform(generator);
-    }
+    const Eigen::VectorXd factors = random_values(points.rows(), 0.5, 2.0, 4);
     const PointGrid grid(points, Eigen::VectorXd::Ones(points.rows()), factors, 0.1);
     for (Eigen::Index q = 0; q < points.rows(); q += 7) {
         const Eigen::Vector3d query = 1.01 * points.row(q).transpose();
@@ -86,12 +92,8 @@ TEST(PointGrid, MinScaledDistanceCoversItsBlock) {
 
 TEST(PointGrid, BlockWeightHoldsTheBallAndLiesWithinTheBlock) {
     const Eigen::MatrixX3d points = make_icosphere(3).V;
-    std::mt19937 generator(5);
-    std::uniform_real_distribution<double> uniform(0.1, 2.0);
-    Eigen::VectorXd weights(points.rows());
-    for (Eigen::Index i = 0; i < weights.size(); ++i) {
-        weights[i] = uniform(generator);
-    }
+    const Eigen::VectorXd weights = random_values(points.rows(), 0.1, 2.0, 5);
+    std::mt19937 generator(6);
     const auto weight_within = [&](const Eigen::Vector3d& query, double radius) {
         double sum = 0;
         for (Eigen::Index i = 0; i < points.rows(); ++i) {
