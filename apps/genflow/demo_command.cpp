@@ -98,7 +98,6 @@ void run_demo(const DemoOptions& options) {
     job.ground_truth = motion.apply(bend_at_joints(template_mesh.V, pose));
     job.options.prior = MatchPrior::Articulated;
     job.options.parts = parts;
-    job.options.alignment_candidates = 6;
     job.progress_bar = !options.quiet;
     const nlohmann::json summary = run_match_job(std::move(job));
 
@@ -113,8 +112,7 @@ void run_demo(const DemoOptions& options) {
         "wrote %s/: template.ply, target.ply, limb_parts.json, limb_part_labels.txt,\n"
         "           matched.ply (the deformed template), correspondence.txt, summary.json\n"
         "the same match from the command line:\n"
-        "  genflow match %s/template.ply %s/target.ply -o matched.ply --parts %s/limb_parts.json "
-        "--candidates 6\n",
+        "  genflow match %s/template.ply %s/target.ply -o matched.ply --parts %s/limb_parts.json\n",
         static_cast<long>(template_mesh.V.rows()), summary["seconds"].get<double>(),
         100 * error["mean"].get<double>(), 100 * error["max"].get<double>(),
         100 * summary["mean_distance_over_diagonal"].get<double>(),

@@ -177,7 +177,8 @@ void register_match_command(CLI::App& app) {
         ->capture_default_str();
     command
         ->add_option("--candidates", options->match.alignment_candidates,
-                     "Rigid starts flowed on the coarsest level; the lowest d_H goes on")
+                     "Rigid starts flowed on the coarsest level; of those within 5 % of the "
+                     "lowest d_H, the one whose heat kernel signatures agree best goes on")
         ->check(CLI::Range(1, 24))
         ->capture_default_str();
     command->add_flag("--implicit", options->match.implicit,

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numeric>
 
@@ -13,6 +14,7 @@
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/mesh_size.h"
+#include "matching/signature_discrepancy.h"
 #include "operators/triangle.h"
 
 namespace genflow {
@@ -67,11 +69,12 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         !detail::finite_at_least(options.stagnation_tolerance, 0) ||
         options.alignment_candidates < 1 || !detail::finite_above(options.h1_length, 0) ||
         options.fine_iterations < 0 || options.levels < 0 || options.coarse_vertices < 100 ||
-        options.selection_iterations < 0 || !detail::finite_at_least(options.coarse_epsilon, 1)) {
+        options.selection_iterations < 0 || !detail::finite_at_least(options.coarse_epsilon, 1) ||
+        !detail::finite_at_least(options.selection_tolerance, 0)) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
-            "coarse_vertices >= 100 and coarse_epsilon >= 1");
+            "coarse_vertices >= 100, coarse_epsilon >= 1 and selection_tolerance >= 0");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -82,9 +85,9 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
 }
 
 // `parts`: the level's part model, joint centres at the positions of `template_mesh`.
-std::unique_ptr<Metric> make_metric(const MatchOptions& options, const TriangleMesh& template_mesh,
-                                    const PartModel* parts) {
-    switch (options.prior) {
+std::unique_ptr<Metric> make_metric(const MatchOptions& options, MatchPrior prior,
+                                    const TriangleMesh& template_mesh, const PartModel* parts) {
+    switch (prior) {
         case MatchPrior::L2:
             return std::make_unique<L2Metric>();
         case MatchPrior::H1: {
@@ -167,6 +170,36 @@ Embedding moved_embedding(const Embedding& embedding, const Similarity& similari
 
 }  // namespace
 
+namespace {
+
+// Of the flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
+// one whose heat kernel signatures agree best with the target's (MatchOptions::align).
+std::size_t choose_start(const std::vector<FlowResult>& flows, const TriangleMesh& template_mesh,
+                         const TriangleMesh& target, double tolerance) {
+    if (flows.size() < 2) {
+        return 0;
+    }
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const FlowResult& flow : flows) {
+        lowest = std::min(lowest, flow.energy.back());
+    }
+    const detail::SignatureDiscrepancy discrepancy(template_mesh, target);
+    std::size_t chosen = 0;
+    double best_agreement = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < flows.size(); ++k) {
+        if (flows[k].energy.back() <= (1 + tolerance) * lowest) {
+            const double disagreement = discrepancy(flows[k].mesh.V);
+            if (disagreement < best_agreement) {
+                best_agreement = disagreement;
+                chosen = k;
+            }
+        }
+    }
+    return chosen;
+}
+
+}  // namespace
+
 MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                   const MatchOptions& options) {
     check_inputs(template_mesh, target, options);
@@ -201,7 +234,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     // The flow of one level from `moved` (the template level's vertices, already placed).
     // `placement`: the similarity that took the template level to `moved`'s rest frame.
     const auto flow_level = [&](int l, const TriangleMesh& moved, int iterations,
-                                const Similarity& placement) {
+                                const Similarity& placement, MatchPrior prior) {
         const Level& level = pyramid[static_cast<std::size_t>(l)];
         const auto distance_to_target = [&](double epsilon_factor) {
             return PseudoHausdorffEnergy(
@@ -220,7 +253,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         TriangleMesh rest = level.template_mesh;  // where the joint centres are bound
         rest.V = placement.apply(rest.V);
         const std::unique_ptr<Metric> metric =
-            make_metric(options, rest, parts ? &*parts : nullptr);
+            make_metric(options, prior, rest, parts ? &*parts : nullptr);
         DescentOptions descent{.max_displacement = options.max_step * diagonal,
                                .max_steps = iterations,
                                .stagnation_tolerance = options.stagnation_tolerance,
@@ -255,35 +288,49 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     };
 
     // The coarsest level. With several rigid starts, each flows `selection_iterations` steps
-    // with the prior and the lowest d_H goes on: a rigid fit alone can prefer a flipped pose
-    // of an articulated shape, a flow that may bend cannot.
+    // in the H1 metric, which lets the template reach the target's surface whatever the
+    // match's prior (the signatures are compared where the flow put the points); of those
+    // within selection_tolerance of the lowest d_H, the one whose signatures agree best with
+    // the target's goes on (MatchOptions::align) and flows in the prior's metric.
     clock = std::chrono::steady_clock::now();
     const Level& coarsest = pyramid.back();
-    FlowResult best;
-    Similarity best_start;
-    const int first_iterations =
-        starts.size() > 1 ? std::min(options.selection_iterations, options.max_iterations)
-                          : options.max_iterations;
-    for (const Similarity& similarity : starts) {
+    const auto placed = [&](const Similarity& similarity) {
         TriangleMesh moved = coarsest.template_mesh;
         moved.V = similarity.apply(moved.V);
-        FlowResult flow = flow_level(count - 1, moved, first_iterations, similarity);
-        if (best.energy.empty() || flow.energy.back() < best.energy.back()) {
-            best = std::move(flow);
-            best_start = similarity;
+        return moved;
+    };
+    std::size_t chosen = 0;
+    FlowResult best;
+    if (starts.size() == 1) {
+        best = flow_level(count - 1, placed(starts.front()), options.max_iterations, starts.front(),
+                          options.prior);
+    } else {
+        const int selection_steps = std::min(options.selection_iterations, options.max_iterations);
+        std::vector<FlowResult> flows;
+        for (const Similarity& similarity : starts) {
+            flows.push_back(flow_level(count - 1, placed(similarity), selection_steps, similarity,
+                                       MatchPrior::H1));
+            if (cancelled) {
+                break;
+            }
         }
-        if (cancelled) {
-            break;
+        chosen = choose_start(flows, coarsest.template_mesh, coarsest.target,
+                              options.selection_tolerance);
+        best = std::move(flows[chosen]);
+        if (!cancelled && options.prior != MatchPrior::H1) {
+            best = flow_level(count - 1, placed(starts[chosen]), options.max_iterations,
+                              starts[chosen], options.prior);
+        } else if (!cancelled && best.status != FlowStatus::Converged &&
+                   options.max_iterations > selection_steps) {
+            FlowResult more =
+                flow_level(count - 1, best.mesh, options.max_iterations - selection_steps,
+                           starts[chosen], options.prior);
+            more.steps += best.steps;
+            more.energy.insert(more.energy.begin(), best.energy.begin(), best.energy.end() - 1);
+            best = std::move(more);
         }
     }
-    if (starts.size() > 1 && !cancelled && best.status != FlowStatus::Converged &&
-        options.max_iterations > first_iterations) {
-        FlowResult more =
-            flow_level(count - 1, best.mesh, options.max_iterations - first_iterations, best_start);
-        more.steps += best.steps;
-        more.energy.insert(more.energy.begin(), best.energy.begin(), best.energy.end() - 1);
-        best = std::move(more);
-    }
+    const Similarity best_start = starts[chosen];
     result.initial_alignment = best_start;
     result.levels.push_back(
         report(best.mesh, coarsest, best, pyramid_seconds + seconds_since(clock)));
@@ -306,7 +353,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         clock = std::chrono::steady_clock::now();
         const Level& level = pyramid[static_cast<std::size_t>(l)];
         const TriangleMesh moved = carry_to(l, current.V);
-        FlowResult flow = flow_level(l, moved, options.fine_iterations, best_start);
+        FlowResult flow = flow_level(l, moved, options.fine_iterations, best_start, options.prior);
         result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));
         current = std::move(flow.mesh);
     }
