@@ -168,10 +168,6 @@ Embedding moved_embedding(const Embedding& embedding, const Similarity& similari
     return moved;
 }
 
-}  // namespace
-
-namespace {
-
 // Of the flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
 // one whose heat kernel signatures agree best with the target's (MatchOptions::align).
 std::size_t choose_start(const std::vector<FlowResult>& flows, const TriangleMesh& template_mesh,

@@ -27,19 +27,7 @@ LogSignature log_signature(const TriangleMesh& coarse) {
             result.vertex.push_back(i);
         }
     }
-    result.values.resize(static_cast<Eigen::Index>(result.vertex.size()), signature.cols());
-    for (std::size_t k = 0; k < result.vertex.size(); ++k) {
-        result.values.row(static_cast<Eigen::Index>(k)) =
-            signature.row(result.vertex[k]).array().log();
-    }
-    return result;
-}
-
-Eigen::MatrixX3d rows_of(const Eigen::MatrixX3d& points, const std::vector<Eigen::Index>& rows) {
-    Eigen::MatrixX3d result(static_cast<Eigen::Index>(rows.size()), 3);
-    for (std::size_t k = 0; k < rows.size(); ++k) {
-        result.row(static_cast<Eigen::Index>(k)) = points.row(rows[k]);
-    }
+    result.values = signature(result.vertex, Eigen::all).array().log();
     return result;
 }
 
@@ -61,7 +49,7 @@ SignatureDiscrepancy::SignatureDiscrepancy(const TriangleMesh& template_mesh,
         throw InvalidInput("SignatureDiscrepancy: a mesh has no vertex with area");
     }
     target_log_signature_ = std::move(to.values);
-    target_points_ = PointIndex(rows_of(coarse_target.mesh.V, to.vertex));
+    target_points_ = PointIndex(coarse_target.mesh.V(to.vertex, Eigen::all));
 }
 
 double SignatureDiscrepancy::operator()(const Eigen::MatrixX3d& deformed) const {

@@ -66,9 +66,10 @@ Eigen::MatrixXd heat_kernel_signature(const TriangleMesh& mesh,
     if (eigen.info() != Eigen::Success) {
         throw InvalidInput("heat_kernel_signature: the eigen-solve did not converge");
     }
-    // φ_k(i)² = ψ_k(i)² / m_i; K is PSD, so eigenvalues below 0 are rounding.
+    // φ_k(i)² = ψ_k(i)² / m_i.
     const Eigen::MatrixXd squared_modes = inverse_root.array().square().matrix().asDiagonal() *
                                           eigen.eigenvectors().array().square().matrix();
+    // K is PSD: eigenvalues below 0 are rounding.
     const Eigen::VectorXd eigenvalues = eigen.eigenvalues().cwiseMax(0);
 
     Eigen::MatrixXd signature =

@@ -25,7 +25,7 @@ namespace genflow {
 /// (h ≈ 1 + (K − K̄)·t/3 on a closed surface of mean curvature K̄; exactly 1 on a round sphere),
 /// which makes it a pose-independent descriptor of where a vertex lies on a shape.
 ///
-/// The eigenproblem is solved densely, O(#V³): meant for coarse meshes (match() uses about 500
+/// The eigenproblem is solved densely, O(#V³): meant for coarse meshes (match() uses about 1000
 /// vertices). Vertices of zero mass (unreferenced, or only in degenerate faces) are left out of
 /// the eigenproblem and get 0.
 /// \throws InvalidInput if the mesh is invalid (bad indices, non-finite coordinates), has zero
