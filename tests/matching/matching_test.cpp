@@ -382,6 +382,11 @@ TEST(Match, RejectsBadInput) {
     MatchOptions sharper;
     sharper.coarse_epsilon = 0.5;
     EXPECT_THROW((void)match(mesh, mesh, sharper), InvalidInput);
+    for (const double tolerance : {-0.01, static_cast<double>(NAN)}) {
+        MatchOptions shortlist;
+        shortlist.selection_tolerance = tolerance;
+        EXPECT_THROW((void)match(mesh, mesh, shortlist), InvalidInput);
+    }
 }
 
 TEST(Correspondence, ClosestPointsLieOnTheTarget) {
