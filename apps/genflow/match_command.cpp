@@ -181,6 +181,12 @@ void register_match_command(CLI::App& app) {
                      "lowest d_H, the one whose heat kernel signatures agree best goes on")
         ->check(CLI::Range(1, 24))
         ->capture_default_str();
+    command
+        ->add_option("--signature-guidance", options->match.signature_guidance,
+                     "Weight of the heat kernel signatures in the coarsest flow, as a fraction "
+                     "of the diagonal (points are near only if close and alike; 0 = off)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
     command->add_flag("--implicit", options->match.implicit,
                       "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
     command->add_flag("--no-align", options->no_align,

@@ -76,16 +76,20 @@ double ratio_power(double r, double alpha, int integer_alpha) {
 
 // One point set of the distance: positions and log weights, with the positive-weight points
 // ("active") in a grid whose cell order keeps each query's terms contiguous in memory.
+using RowMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 struct Side {
     Eigen::MatrixX3d points;
     Eigen::VectorXd log_weight;         // −inf for zero-mass vertices
     std::vector<std::uint32_t> active;  // vertices with positive weight
     double total_weight = 0;
     std::unique_ptr<detail::PointGrid> grid;  // over `active` (grid ids index `active`)
+    RowMatrixXd descriptors;                  // per point (PointDescriptors), or no columns
+    RowMatrixXd slot_descriptors;             // the same rows in the grid's slot order
 
     Side(const Eigen::MatrixX3d& positions, const Eigen::VectorXd& masses,
-         const PseudoHausdorffOptions& options)
-        : points(positions) {
+         const PseudoHausdorffOptions& options, const Eigen::MatrixXd& point_descriptors)
+        : points(positions), descriptors(point_descriptors) {
         const double mass = masses.sum();
         const double normalizer =
             options.weights == HausdorffWeights::Paper ? static_cast<double>(masses.size()) : mass;
@@ -130,7 +134,16 @@ struct Side {
                    3;
         }
         grid = std::make_unique<detail::PointGrid>(active_points, weights, kappa2, cell);
+        if (descriptors.cols() > 0) {
+            slot_descriptors.resize(n, descriptors.cols());
+            for (Eigen::Index slot = 0; slot < n; ++slot) {
+                slot_descriptors.row(slot) =
+                    descriptors.row(active[grid->id(static_cast<std::uint32_t>(slot))]);
+            }
+        }
     }
+
+    [[nodiscard]] bool has_descriptors() const { return descriptors.cols() > 0; }
 };
 
 struct Parameters {
@@ -221,12 +234,58 @@ double gather_within_radius(const detail::PointGrid& grid, const Eigen::Vector3d
 // Calls visit(slot, d, t) for every kept term of f_u = Σ_w weight_w d_uw^{−α}, where `slot`
 // is w's place in to.grid and the term is scaled by the nearest one's d*^α so that nothing
 // overflows: t = weight_w (d*/d_uw)^α. Returns d*, so that log f_u = log Σt − α log d*.
+// (With descriptors, `found` holds the distances of R^{3+k}, so d and d* are those.)
+// Adds |φ_u − ψ_slot|² (PointDescriptors) to the squared distances in `found`.
+void add_descriptor_distances(const Side& from, const Side& to, Eigen::Index u, Neighbours& found) {
+    const auto phi = from.descriptors.row(u);
+    for (std::size_t k = 0; k < found.count; ++k) {
+        found.distances2[k] +=
+            (to.slot_descriptors.row(static_cast<Eigen::Index>(found.slots[k])) - phi)
+                .squaredNorm();
+    }
+}
+
+// gather_within_radius() with descriptors, leaving the distances of R^{3+k} in `found`. D, the
+// smallest κ_m² d_m, must come from the full distances d_m (a smaller one would drop more than
+// the bound allows), so it is taken over the points collected in a first block. The radius
+// then bounds the spatial part |x − y|² ≤ d − ε², which keeps every term with d ≤ D; the
+// shell bound stays valid because the descriptors only make each term smaller.
+void gather_with_descriptors(const Side& from, const Side& to, const Parameters& p, Eigen::Index u,
+                             Neighbours& found) {
+    const Eigen::Vector3d x = from.points.row(u).transpose();
+    const detail::PointGrid& grid = *to.grid;
+    constexpr double kEverywhere = std::numeric_limits<double>::infinity();
+    if (p.truncation > 0) {
+        double radius2 = kEverywhere;
+        for (const int rings : {1, 4, 0}) {
+            grid.collect_within(x, rings, kEverywhere, found);
+            if (found.count > 0) {
+                add_descriptor_distances(from, to, u, found);
+                double radius_d = kEverywhere;
+                for (std::size_t k = 0; k < found.count; ++k) {
+                    radius_d = std::min(
+                        radius_d, grid.factor(found.slots[k]) * (found.distances2[k] + p.eps2));
+                }
+                radius2 = std::min((radius_d - p.eps2) * (1 + 1e-12),
+                                   shell_radius2(grid, x, radius_d, p, to.total_weight));
+                break;  // the last pass, over all points, always finds one
+            }
+        }
+        grid.collect_within(x, grid.rings_to_cover(std::sqrt(radius2)), radius2, found);
+    } else {
+        grid.collect_within(x, 0, kEverywhere, found);
+    }
+    add_descriptor_distances(from, to, u, found);
+}
+
 template <typename Visit>
 double visit_terms(const Side& from, const Side& to, const Parameters& p, Eigen::Index u,
                    Neighbours& found, Visit&& visit) {
     const Eigen::Vector3d x = from.points.row(u).transpose();
     const detail::PointGrid& grid = *to.grid;
-    if (p.truncation > 0) {
+    if (from.has_descriptors()) {
+        gather_with_descriptors(from, to, p, u, found);
+    } else if (p.truncation > 0) {
         gather_within_radius(grid, x, p, to.total_weight, found);
     } else {
         grid.collect_within(x, 0, std::numeric_limits<double>::infinity(), found);
@@ -386,9 +445,34 @@ void check_options(const PseudoHausdorffOptions& options, const char* caller) {
     }
 }
 
+// Checks that `descriptors` fit point sets of `moving` and `fixed` rows (when it has any
+// columns): as many columns on both sides, a row per point, finite values.
+void check_descriptors(const PointDescriptors& descriptors, Eigen::Index moving, Eigen::Index fixed,
+                       const char* caller) {
+    if (descriptors.moving.cols() == 0 && descriptors.fixed.cols() == 0) {
+        return;
+    }
+    if (descriptors.moving.cols() != descriptors.fixed.cols()) {
+        throw InvalidInput(std::string(caller) + ": the descriptors have " +
+                           std::to_string(descriptors.moving.cols()) + " and " +
+                           std::to_string(descriptors.fixed.cols()) +
+                           " columns; both sides need the same");
+    }
+    if ((moving >= 0 && descriptors.moving.rows() != moving) || descriptors.fixed.rows() != fixed) {
+        throw InvalidInput(std::string(caller) + ": the descriptors need a row per point (" +
+                           std::to_string(descriptors.moving.rows()) + " and " +
+                           std::to_string(descriptors.fixed.rows()) + " rows for " +
+                           std::to_string(moving) + " and " + std::to_string(fixed) + " points)");
+    }
+    if (!descriptors.moving.allFinite() || !descriptors.fixed.allFinite()) {
+        throw InvalidInput(std::string(caller) + ": the descriptors must be finite");
+    }
+}
+
 }  // namespace
 
 struct PseudoHausdorffEnergy::Impl {
+    Eigen::MatrixXd moving_descriptors;  // no columns without descriptors
     Side target;
     std::mutex cache_mutex;
     Eigen::MatrixX3d cached_V;
@@ -397,19 +481,27 @@ struct PseudoHausdorffEnergy::Impl {
     std::mutex workspace_mutex;
     Workspace workspace;
 
-    Impl(const TriangleMesh& mesh, const PseudoHausdorffOptions& options)
-        : target(mesh.V, lumped_masses(mesh, MassType::Barycentric), options) {}
+    Impl(const TriangleMesh& mesh, const PseudoHausdorffOptions& options,
+         PointDescriptors descriptors)
+        : moving_descriptors(std::move(descriptors.moving)),
+          target(mesh.V, lumped_masses(mesh, MassType::Barycentric), options, descriptors.fixed) {}
 };
 
 PseudoHausdorffEnergy::PseudoHausdorffEnergy(const TriangleMesh& target,
                                              const PseudoHausdorffOptions& options)
+    : PseudoHausdorffEnergy(target, options, PointDescriptors{}) {}
+
+PseudoHausdorffEnergy::PseudoHausdorffEnergy(const TriangleMesh& target,
+                                             const PseudoHausdorffOptions& options,
+                                             PointDescriptors descriptors)
     : options_(options) {
     detail::require_valid_mesh(target, "PseudoHausdorffEnergy");
     if (target.F.rows() == 0) {
         throw InvalidInput("PseudoHausdorffEnergy: the target mesh has no faces");
     }
     check_options(options, "PseudoHausdorffEnergy");
-    impl_ = std::make_unique<Impl>(target, options);
+    check_descriptors(descriptors, -1, target.V.rows(), "PseudoHausdorffEnergy");
+    impl_ = std::make_unique<Impl>(target, options, std::move(descriptors));
     if (impl_->target.active.empty()) {
         throw InvalidInput("PseudoHausdorffEnergy: the target mesh has zero area");
     }
@@ -503,7 +595,8 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
 
 PseudoHausdorffEvaluation pseudo_hausdorff(const Eigen::MatrixX3d& X, const Eigen::VectorXd& mass_x,
                                            const Eigen::MatrixX3d& Y, const Eigen::VectorXd& mass_y,
-                                           const PseudoHausdorffOptions& options) {
+                                           const PseudoHausdorffOptions& options,
+                                           const PointDescriptors& descriptors) {
     check_options(options, "pseudo_hausdorff");
     if (mass_x.size() != X.rows() || mass_y.size() != Y.rows()) {
         throw InvalidInput("pseudo_hausdorff: one mass per point is needed");
@@ -516,8 +609,9 @@ PseudoHausdorffEvaluation pseudo_hausdorff(const Eigen::MatrixX3d& X, const Eige
         throw InvalidInput(
             "pseudo_hausdorff: points and masses must be finite, masses non-negative");
     }
-    const Side source(X, mass_x, options);
-    const Side target(Y, mass_y, options);
+    check_descriptors(descriptors, X.rows(), Y.rows(), "pseudo_hausdorff");
+    const Side source(X, mass_x, options, descriptors.moving);
+    const Side target(Y, mass_y, options, descriptors.fixed);
     if (source.active.empty() || target.active.empty()) {
         throw InvalidInput("pseudo_hausdorff: each point set needs a point of positive mass");
     }
@@ -530,7 +624,13 @@ PseudoHausdorffEvaluation PseudoHausdorffEnergy::evaluate(const TriangleMesh& me
     if (mesh.F.rows() == 0) {
         throw InvalidInput("PseudoHausdorffEnergy::evaluate: mesh has no faces");
     }
-    const Side source(mesh.V, lumped_masses(mesh, MassType::Barycentric), options_);
+    const Eigen::MatrixXd& descriptors = impl_->moving_descriptors;
+    if (descriptors.cols() > 0 && descriptors.rows() != mesh.V.rows()) {
+        throw InvalidInput("PseudoHausdorffEnergy::evaluate: the mesh has " +
+                           std::to_string(mesh.V.rows()) + " vertices but " +
+                           std::to_string(descriptors.rows()) + " descriptor rows");
+    }
+    const Side source(mesh.V, lumped_masses(mesh, MassType::Barycentric), options_, descriptors);
 
     if (source.active.empty()) {
         throw InvalidInput("PseudoHausdorffEnergy::evaluate: mesh has zero area");

@@ -141,6 +141,8 @@ public:
     /// The row, in the constructor's matrix, of the point at `slot`.
     [[nodiscard]] std::uint32_t id(std::uint32_t slot) const { return id_[slot]; }
     [[nodiscard]] double weight(std::uint32_t slot) const { return weight_[slot]; }
+    /// The `factor` of the point at `slot` (as given to the constructor).
+    [[nodiscard]] double factor(std::uint32_t slot) const { return factor_[slot]; }
     [[nodiscard]] Eigen::Vector3d position(std::uint32_t slot) const {
         return {x_[slot], y_[slot], z_[slot]};
     }

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <vector>
 
 #include "genflow/exceptions.h"
 #include "genflow/flows/implicit_euler.h"
@@ -219,6 +220,165 @@ TEST(PseudoHausdorff, RejectsBadInput) {
     EXPECT_THROW(
         (void)pseudo_hausdorff(mesh.V, Eigen::VectorXd::Ones(3), mesh.V,
                                Eigen::VectorXd::Ones(mesh.V.rows()), {.alpha = 8, .epsilon = 0.1}),
+        InvalidInput);
+}
+
+// Descriptors of a few columns for every point of `mesh`: smooth functions of position, as a
+// heat kernel signature is, on the scale of the meshes (lengths ~0.3).
+Eigen::MatrixXd smooth_descriptors(const Eigen::MatrixX3d& points) {
+    Eigen::MatrixXd descriptors(points.rows(), 2);
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        descriptors(i, 0) = 0.3 * std::sin(2 * points(i, 0) + points(i, 2));
+        descriptors(i, 1) = 0.2 * points(i, 1) * points(i, 1);
+    }
+    return descriptors;
+}
+
+PointDescriptors descriptors_of(const Pair& pair) {
+    return {smooth_descriptors(pair.X.V), smooth_descriptors(pair.Y.V)};
+}
+
+// SPEC.md §8's sums written out in long double, with d_ij = |x_i − y_j|² + |φ_i − ψ_j|² + ε².
+double augmented_reference(const Pair& pair, const PointDescriptors& descriptors, double alpha,
+                           double epsilon) {
+    const Eigen::VectorXd mx = lumped_masses(pair.X, MassType::Barycentric);
+    const Eigen::VectorXd my = lumped_masses(pair.Y, MassType::Barycentric);
+    const Eigen::Index P = pair.X.V.rows();
+    const Eigen::Index Q = pair.Y.V.rows();
+    std::vector<long double> f(static_cast<std::size_t>(P), 0);
+    std::vector<long double> g(static_cast<std::size_t>(Q), 0);
+    for (Eigen::Index i = 0; i < P; ++i) {
+        for (Eigen::Index j = 0; j < Q; ++j) {
+            const long double d =
+                (pair.X.V.row(i) - pair.Y.V.row(j)).squaredNorm() +
+                (descriptors.moving.row(i) - descriptors.fixed.row(j)).squaredNorm() +
+                epsilon * epsilon;
+            const long double power = std::pow(d, -static_cast<long double>(alpha));
+            f[static_cast<std::size_t>(i)] += my[j] / static_cast<double>(Q) * power;
+            g[static_cast<std::size_t>(j)] += mx[i] / static_cast<double>(P) * power;
+        }
+    }
+    long double S = 0;
+    for (Eigen::Index i = 0; i < P; ++i) {
+        S += mx[i] / static_cast<double>(P) / f[static_cast<std::size_t>(i)];
+    }
+    for (Eigen::Index j = 0; j < Q; ++j) {
+        S += my[j] / static_cast<double>(Q) / g[static_cast<std::size_t>(j)];
+    }
+    return static_cast<double>(std::pow(S, 1 / (2 * static_cast<long double>(alpha))) - epsilon);
+}
+
+TEST(PseudoHausdorffDescriptors, GiveTheDistanceOfTheAugmentedPointSets) {
+    const Pair pair = small_pair();
+    const PointDescriptors descriptors = descriptors_of(pair);
+    for (const double alpha : {2.0, 8.0}) {
+        const PseudoHausdorffOptions options{.alpha = alpha, .epsilon = 0.03, .truncation = 0};
+        const double expected = augmented_reference(pair, descriptors, alpha, 0.03);
+        const PseudoHausdorffEnergy energy(pair.Y, options, descriptors);
+        EXPECT_NEAR(energy.value(pair.X), expected, 1e-12 * expected) << alpha;
+        // ... larger than without them: every d_ij grows.
+        EXPECT_GT(expected, evaluate(pair, options).value);
+    }
+}
+
+TEST(PseudoHausdorffDescriptors, DifferentialMatchesFiniteDifferences) {
+    const Pair pair = small_pair();
+    const PointDescriptors descriptors = descriptors_of(pair);
+    const Eigen::VectorXd mx = lumped_masses(pair.X, MassType::Barycentric);
+    const Eigen::VectorXd my = lumped_masses(pair.Y, MassType::Barycentric);
+    for (const double alpha : {4.0, 8.0, 16.0}) {
+        for (const double truncation : {0.0, 1e-12}) {
+            const PseudoHausdorffOptions options{
+                .alpha = alpha, .epsilon = 0.03, .truncation = truncation};
+            const auto value = [&](const TriangleMesh& m) {
+                return pseudo_hausdorff(m.V, mx, pair.Y.V, my, options, descriptors).value;
+            };
+            const VertexField fd = test::finite_difference_gradient(value, pair.X, 1e-6);
+            const VertexField analytic =
+                pseudo_hausdorff(pair.X.V, mx, pair.Y.V, my, options, descriptors).differential;
+            EXPECT_LT(test::relative_error(analytic, fd), 1e-6)
+                << "alpha " << alpha << " truncation " << truncation;
+        }
+    }
+}
+
+TEST(PseudoHausdorffDescriptors, TruncationStaysWithinItsBound) {
+    const Pair pair = small_pair();
+    const PointDescriptors descriptors = descriptors_of(pair);
+    const Eigen::VectorXd mx = lumped_masses(pair.X, MassType::Barycentric);
+    const Eigen::VectorXd my = lumped_masses(pair.Y, MassType::Barycentric);
+    const auto at = [&](double tau) {
+        return pseudo_hausdorff(pair.X.V, mx, pair.Y.V, my,
+                                {.alpha = 8, .epsilon = 0.02, .truncation = tau}, descriptors);
+    };
+    const auto exact = at(0);
+    for (const double tau : {1e-2, 1e-4, 1e-8}) {
+        const auto truncated = at(tau);
+        EXPECT_LE(std::abs(truncated.value - exact.value) / (exact.value + 0.02),
+                  tau / (16 * (1 - tau)))
+            << tau;
+        EXPECT_LT(test::relative_error(truncated.differential, exact.differential), 100 * tau)
+            << tau;
+        EXPECT_LT(truncated.pairs, exact.pairs);
+    }
+}
+
+TEST(PseudoHausdorffDescriptors, EqualDescriptorsChangeNothing) {
+    const Pair pair = small_pair();
+    const PseudoHausdorffOptions options{.alpha = 8, .epsilon = 0.02, .truncation = 1e-4};
+    const PseudoHausdorffEnergy plain(pair.Y, options);
+    const PseudoHausdorffEnergy constant(pair.Y, options,
+                                         {Eigen::MatrixXd::Constant(pair.X.V.rows(), 3, 0.7),
+                                          Eigen::MatrixXd::Constant(pair.Y.V.rows(), 3, 0.7)});
+    const auto a = plain.evaluate(pair.X);
+    const auto b = constant.evaluate(pair.X);
+    EXPECT_DOUBLE_EQ(b.value, a.value);
+    EXPECT_LT(test::relative_error(b.differential, a.differential), 1e-14);
+}
+
+TEST(PseudoHausdorffDescriptors, PullEachPointTowardsTheAlikeOfTwoEquallyNearOnes) {
+    // Two moving points midway between two fixed ones, the first alike the one at −x, the
+    // second alike the one at +x. Without descriptors the mirror symmetry leaves no pull along x.
+    Eigen::MatrixX3d X(2, 3);
+    X << 0, 0.1, 0, 0, -0.1, 0;
+    Eigen::MatrixX3d Y(2, 3);
+    Y << -1, 0, 0, 1, 0, 0;
+    const Eigen::VectorXd masses = Eigen::VectorXd::Ones(2);
+    const PseudoHausdorffOptions options{.alpha = 8, .epsilon = 0.1, .truncation = 0};
+    const auto plain = pseudo_hausdorff(X, masses, Y, masses, options);
+    EXPECT_NEAR(plain.differential(0, 0), 0, 1e-12 * plain.differential.norm());
+    EXPECT_NEAR(plain.differential(1, 0), 0, 1e-12 * plain.differential.norm());
+    Eigen::MatrixXd kinds(2, 1);
+    kinds << 0, 0.5;
+    const auto guided = pseudo_hausdorff(X, masses, Y, masses, options, {kinds, kinds});
+    // Descent goes along −differential: the first point to −x, the second to +x.
+    EXPECT_GT(guided.differential(0, 0), 0.5 * guided.differential.row(0).norm());
+    EXPECT_LT(guided.differential(1, 0), -0.5 * guided.differential.row(1).norm());
+}
+
+TEST(PseudoHausdorffDescriptors, RejectsDescriptorsThatDoNotFit) {
+    const Pair pair = small_pair();
+    const PseudoHausdorffOptions options{.alpha = 8, .epsilon = 0.1};
+    const Eigen::Index P = pair.X.V.rows();
+    const Eigen::Index Q = pair.Y.V.rows();
+    EXPECT_THROW(PseudoHausdorffEnergy(pair.Y, options,
+                                       {Eigen::MatrixXd::Zero(P, 2), Eigen::MatrixXd::Zero(Q, 3)}),
+                 InvalidInput);
+    EXPECT_THROW(
+        PseudoHausdorffEnergy(pair.Y, options,
+                              {Eigen::MatrixXd::Zero(P, 2), Eigen::MatrixXd::Zero(Q + 1, 2)}),
+        InvalidInput);
+    Eigen::MatrixXd with_nan = Eigen::MatrixXd::Zero(Q, 2);
+    with_nan(3, 1) = NAN;
+    EXPECT_THROW(PseudoHausdorffEnergy(pair.Y, options, {Eigen::MatrixXd::Zero(P, 2), with_nan}),
+                 InvalidInput);
+    const PseudoHausdorffEnergy energy(
+        pair.Y, options, {Eigen::MatrixXd::Zero(P + 1, 2), Eigen::MatrixXd::Zero(Q, 2)});
+    EXPECT_THROW((void)energy.value(pair.X), InvalidInput);  // one descriptor row too many
+    EXPECT_THROW(
+        (void)pseudo_hausdorff(pair.X.V, lumped_masses(pair.X, MassType::Barycentric), pair.Y.V,
+                               lumped_masses(pair.Y, MassType::Barycentric), options,
+                               {Eigen::MatrixXd::Zero(P - 1, 2), Eigen::MatrixXd::Zero(Q, 2)}),
         InvalidInput);
 }
 

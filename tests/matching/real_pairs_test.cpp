@@ -17,8 +17,9 @@ namespace {
 
 // The TOSCA cat's best rigid fit is turned head to tail (41 % mean error when the lowest d_H
 // chose the start), FAUST's second best is turned front to back; the signatures make the flows
-// pick the right start. Measured mean errors over the diagonal: cat 6.7 %, FAUST 3.0 %,
-// centaur 3.9 %.
+// pick the right start (mean errors over the diagonal: cat 6.7 %, FAUST 3.0 %, centaur 3.9 %).
+// The signatures' guidance of the coarsest flow then keeps limbs off the wrong surfaces:
+// cat 5.4 %, FAUST 1.7 %, centaur 2.6 % (average 3.2 %, 4.5 % without it).
 TEST(RealPairs, SmallPairsMatchWithoutAFlippedStart) {
     const auto data = test::data_directory();
     if (!data) {
@@ -26,6 +27,7 @@ TEST(RealPairs, SmallPairsMatchWithoutAFlippedStart) {
     }
     const nlohmann::json pairs = nlohmann::json::parse(std::ifstream(*data / "pairs.json"));
     int matched = 0;
+    double error_sum = 0;
     for (const auto& pair : pairs) {
         const std::string name = pair["name"];
         if (!name.ends_with("_small")) {
@@ -39,10 +41,12 @@ TEST(RealPairs, SmallPairsMatchWithoutAFlippedStart) {
         const double error =
             (result.deformed.V - truth.V).rowwise().norm().mean() / bounding_box_diagonal(truth);
         std::printf("%s: mean error %.3f\n", name.c_str(), error);
-        EXPECT_LT(error, 0.1) << name;
+        EXPECT_LT(error, 0.08) << name;
+        error_sum += error;
         ++matched;
     }
-    EXPECT_GE(matched, 3);
+    ASSERT_GE(matched, 3);
+    EXPECT_LT(error_sum / matched, 0.04);
 }
 
 }  // namespace

@@ -39,6 +39,18 @@ struct PseudoHausdorffOptions {
     std::size_t stored_term_budget = 10'000'000;
 };
 
+/// Per-point descriptors that make d_H compare the points in R^{3+k}, (x_i, φ_i) against
+/// (y_j, ψ_j): d_ij = |x_i − y_j|² + |φ_i − ψ_j|² + ε². A point is then near only to the points
+/// that are both close and alike, so a descriptor that tells the parts of a shape apart (a heat
+/// kernel signature: hands from hips) keeps a matching flow from fitting a part onto the wrong
+/// one. The descriptors are lengths: scale them with the meshes. The moving mesh's stay with
+/// its vertices (they do not change as X moves), so the differential keeps its form,
+/// ∂d_H/∂x_i = Σ_j c_ij (x_i − y_j). No columns (the default) means no descriptors.
+struct PointDescriptors {
+    Eigen::MatrixXd moving;  ///< #P×k, one row per point of the moving set X
+    Eigen::MatrixXd fixed;   ///< #Q×k, one row per point of the fixed set Y
+};
+
 /// Everything one evaluation produces; `value()`, `differential()` and `linearize()` share it.
 struct PseudoHausdorffEvaluation {
     double value = 0;            ///< d_H(X, Y)
@@ -51,13 +63,14 @@ struct PseudoHausdorffEvaluation {
 /// d_H between point sets X (#P×3) and Y (#Q×3) with the given vertex masses (see
 /// PseudoHausdorffEnergy for the formulas); the differential is with respect to X at fixed
 /// masses. Points of zero mass take no part.
-/// \throws InvalidInput for non-finite points or masses, negative masses, a set without a
-///         point of positive mass, mismatched sizes, or invalid options.
+/// \throws InvalidInput for non-finite points, masses or descriptors, negative masses, a set
+///         without a point of positive mass, mismatched sizes, or invalid options.
 [[nodiscard]] PseudoHausdorffEvaluation pseudo_hausdorff(const Eigen::MatrixX3d& X,
                                                          const Eigen::VectorXd& mass_x,
                                                          const Eigen::MatrixX3d& Y,
                                                          const Eigen::VectorXd& mass_y,
-                                                         const PseudoHausdorffOptions& options);
+                                                         const PseudoHausdorffOptions& options,
+                                                         const PointDescriptors& descriptors = {});
 
 /// The differentiable pseudo-Hausdorff distance of the paper's Appendix A (eq. 20) between the
 /// moving mesh X (the argument of every call) and a fixed target Y (SPEC.md §8):
@@ -76,6 +89,8 @@ struct PseudoHausdorffEvaluation {
 /// with truncation > 0 a uniform grid restricts them to near neighbours (as in the paper; the
 /// target's grid is built once, the source's at every evaluation), and both cores are used
 /// when OpenMP is available.
+/// With PointDescriptors the distances are those of R^{3+k}; the truncation keeps its bound
+/// (the radius comes from the full distances, the grid stays three-dimensional).
 /// The last evaluation is cached, so value() then differential() at the same X cost one.
 ///
 /// \note X and Y may have any sampling, connectivity, boundaries or components. Unreferenced
@@ -85,6 +100,12 @@ public:
     /// \throws InvalidInput if the target has no face, indexes outside its vertices or holds a
     ///         non-finite coordinate, or if α < 0.5, ε ≤ 0 or τ ∉ [0, 0.5).
     PseudoHausdorffEnergy(const TriangleMesh& target, const PseudoHausdorffOptions& options);
+    /// With descriptors: `descriptors.fixed` has a row per target vertex, `descriptors.moving`
+    /// a row per vertex of the meshes this energy is evaluated at.
+    /// \throws InvalidInput as above, or if the descriptors are not finite, their column
+    ///         counts differ or `fixed` does not have a row per target vertex.
+    PseudoHausdorffEnergy(const TriangleMesh& target, const PseudoHausdorffOptions& options,
+                          PointDescriptors descriptors);
     ~PseudoHausdorffEnergy() override;
     PseudoHausdorffEnergy(PseudoHausdorffEnergy&&) noexcept;
     PseudoHausdorffEnergy& operator=(PseudoHausdorffEnergy&&) noexcept;
@@ -94,7 +115,8 @@ public:
     [[nodiscard]] std::optional<Linearization> linearize(const TriangleMesh& mesh) const override;
 
     /// One full evaluation at the positions of `mesh`.
-    /// \throws InvalidInput if `mesh` has no face, bad indices or non-finite positions.
+    /// \throws InvalidInput if `mesh` has no face, bad indices or non-finite positions, or
+    ///         (with descriptors) not as many vertices as `descriptors.moving` has rows.
     [[nodiscard]] PseudoHausdorffEvaluation evaluate(const TriangleMesh& mesh) const;
 
     [[nodiscard]] const PseudoHausdorffOptions& options() const { return options_; }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "matching/signature_discrepancy.h"
+#include "matching/heat_signatures.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "genflow/exceptions.h"
@@ -33,9 +34,11 @@ LogSignature log_signature(const TriangleMesh& coarse) {
 
 }  // namespace
 
-SignatureDiscrepancy::SignatureDiscrepancy(const TriangleMesh& template_mesh,
-                                           const TriangleMesh& target, Eigen::Index vertices)
-    : template_vertices_(template_mesh.V.rows()), target_points_(Eigen::MatrixX3d(0, 3)) {
+HeatSignatures::HeatSignatures(const TriangleMesh& template_mesh, const TriangleMesh& target,
+                               Eigen::Index vertices)
+    : template_vertices_(template_mesh.V.rows()),
+      template_points_(Eigen::MatrixX3d(0, 3)),
+      target_points_(Eigen::MatrixX3d(0, 3)) {
     const CoarseMesh coarse_template = coarsen(template_mesh, vertices);
     LogSignature from = log_signature(coarse_template.mesh);
     for (const Eigen::Index k : from.vertex) {
@@ -46,15 +49,16 @@ SignatureDiscrepancy::SignatureDiscrepancy(const TriangleMesh& template_mesh,
     const CoarseMesh coarse_target = coarsen(target, vertices);
     LogSignature to = log_signature(coarse_target.mesh);
     if (template_vertex_.empty() || to.vertex.empty()) {
-        throw InvalidInput("SignatureDiscrepancy: a mesh has no vertex with area");
+        throw InvalidInput("HeatSignatures: a mesh has no vertex with area");
     }
+    template_points_ = PointIndex(template_mesh.V(template_vertex_, Eigen::all));
     target_log_signature_ = std::move(to.values);
     target_points_ = PointIndex(coarse_target.mesh.V(to.vertex, Eigen::all));
 }
 
-double SignatureDiscrepancy::operator()(const Eigen::MatrixX3d& deformed) const {
+double HeatSignatures::discrepancy(const Eigen::MatrixX3d& deformed) const {
     if (deformed.rows() != template_vertices_) {
-        throw InvalidInput("SignatureDiscrepancy: the deformed template has " +
+        throw InvalidInput("HeatSignatures: the deformed template has " +
                            std::to_string(deformed.rows()) + " vertices, not " +
                            std::to_string(template_vertices_));
     }
@@ -69,6 +73,29 @@ double SignatureDiscrepancy::operator()(const Eigen::MatrixX3d& deformed) const 
     const auto middle = squared.begin() + static_cast<std::ptrdiff_t>(squared.size() / 2);
     std::nth_element(squared.begin(), middle, squared.end());
     return *middle;
+}
+
+PointDescriptors HeatSignatures::descriptors(const Eigen::MatrixX3d& template_points,
+                                             const Eigen::MatrixX3d& target_points,
+                                             double length) const {
+    const Eigen::RowVectorXd mean = template_log_signature_.colwise().mean();
+    const Eigen::RowVectorXd deviation =
+        (template_log_signature_.rowwise() - mean).array().square().colwise().mean().sqrt();
+    const auto times = static_cast<double>(template_log_signature_.cols());
+    // A time at which every template point has the same signature carries no information.
+    const Eigen::RowVectorXd scale =
+        (deviation.array() > 0).select(length / std::sqrt(times) / deviation.array(), 0.0);
+    const auto at = [&](const Eigen::MatrixX3d& points, const PointIndex& index,
+                        const Eigen::MatrixXd& log_signature) {
+        Eigen::MatrixXd result(points.rows(), log_signature.cols());
+        for (Eigen::Index i = 0; i < points.rows(); ++i) {
+            const auto nearest = index.nearest(points.row(i).transpose()).first;
+            result.row(i) = (log_signature.row(nearest) - mean).cwiseProduct(scale);
+        }
+        return result;
+    };
+    return {at(template_points, template_points_, template_log_signature_),
+            at(target_points, target_points_, target_log_signature_)};
 }
 
 }  // namespace genflow::detail
