@@ -215,12 +215,16 @@ double shell_radius2(const detail::PointGrid& grid, const Eigen::Vector3d& x, do
 // in `found`. Adaptive radius (SPEC.md §8): for any point m at d_m = |x − y_m|² + ε²,
 // weight_m d_m^{−α} ≤ f_u, so everything beyond d = κ_m² d_m adds at most
 // W (κ_m² d_m)^{−α} = τ weight_m d_m^{−α} ≤ τ f_u, with κ_m² = (W/(weight_m τ))^{1/α}. D, the
-// smallest κ_m² d_m over a first small block, gives a radius; shell_radius2() shrinks it.
+// smallest κ_m² d_m over a first small block (`smallest_scaled(rings)`: over the block of that
+// many rings, 0 for all points; +inf for an empty block), gives a radius; shell_radius2()
+// shrinks it.
+template <typename SmallestScaled>
 double gather_within_radius(const detail::PointGrid& grid, const Eigen::Vector3d& x,
-                            const Parameters& p, double total_weight, Neighbours& found) {
+                            const Parameters& p, double total_weight,
+                            SmallestScaled&& smallest_scaled, Neighbours& found) {
     double radius2 = std::numeric_limits<double>::infinity();
     for (const int rings : {1, 4, 0}) {
-        const double radius_d = grid.min_scaled_distance(x, rings, p.eps2);
+        const double radius_d = smallest_scaled(rings);
         if (radius_d < std::numeric_limits<double>::infinity()) {
             radius2 = std::min((radius_d - p.eps2) * (1 + 1e-12),
                                shell_radius2(grid, x, radius_d, p, total_weight));
@@ -231,10 +235,6 @@ double gather_within_radius(const detail::PointGrid& grid, const Eigen::Vector3d
     return radius2;
 }
 
-// Calls visit(slot, d, t) for every kept term of f_u = Σ_w weight_w d_uw^{−α}, where `slot`
-// is w's place in to.grid and the term is scaled by the nearest one's d*^α so that nothing
-// overflows: t = weight_w (d*/d_uw)^α. Returns d*, so that log f_u = log Σt − α log d*.
-// (With descriptors, `found` holds the distances of R^{3+k}, so d and d* are those.)
 // Adds |φ_u − ψ_slot|² (PointDescriptors) to the squared distances in `found`.
 void add_descriptor_distances(const Side& from, const Side& to, Eigen::Index u, Neighbours& found) {
     const auto phi = from.descriptors.row(u);
@@ -245,50 +245,49 @@ void add_descriptor_distances(const Side& from, const Side& to, Eigen::Index u, 
     }
 }
 
-// gather_within_radius() with descriptors, leaving the distances of R^{3+k} in `found`. D, the
-// smallest κ_m² d_m, must come from the full distances d_m (a smaller one would drop more than
-// the bound allows), so it is taken over the points collected in a first block. The radius
-// then bounds the spatial part |x − y|² ≤ d − ε², which keeps every term with d ≤ D; the
-// shell bound stays valid because the descriptors only make each term smaller.
-void gather_with_descriptors(const Side& from, const Side& to, const Parameters& p, Eigen::Index u,
-                             Neighbours& found) {
-    const Eigen::Vector3d x = from.points.row(u).transpose();
+// The smallest κ_m² d_m over the block of `rings` around the query u, with descriptors. D must
+// come from the full distances d_m of R^{3+k} (a smaller one would drop more than the bound
+// allows), so the block's points are collected (into `found`) and their descriptor distances
+// added. The radius then bounds the spatial part |x − y|² ≤ d − ε², which keeps every term
+// with d ≤ D; the shell bound stays valid because the descriptors only make each term smaller.
+double smallest_scaled_with_descriptors(const Side& from, const Side& to, const Parameters& p,
+                                        Eigen::Index u, int rings, Neighbours& found) {
     const detail::PointGrid& grid = *to.grid;
-    constexpr double kEverywhere = std::numeric_limits<double>::infinity();
-    if (p.truncation > 0) {
-        double radius2 = kEverywhere;
-        for (const int rings : {1, 4, 0}) {
-            grid.collect_within(x, rings, kEverywhere, found);
-            if (found.count > 0) {
-                add_descriptor_distances(from, to, u, found);
-                double radius_d = kEverywhere;
-                for (std::size_t k = 0; k < found.count; ++k) {
-                    radius_d = std::min(
-                        radius_d, grid.factor(found.slots[k]) * (found.distances2[k] + p.eps2));
-                }
-                radius2 = std::min((radius_d - p.eps2) * (1 + 1e-12),
-                                   shell_radius2(grid, x, radius_d, p, to.total_weight));
-                break;  // the last pass, over all points, always finds one
-            }
-        }
-        grid.collect_within(x, grid.rings_to_cover(std::sqrt(radius2)), radius2, found);
-    } else {
-        grid.collect_within(x, 0, kEverywhere, found);
-    }
+    grid.collect_within(from.points.row(u).transpose(), rings,
+                        std::numeric_limits<double>::infinity(), found);
     add_descriptor_distances(from, to, u, found);
+    double smallest = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < found.count; ++k) {
+        smallest = std::min(smallest, grid.factor(found.slots[k]) * (found.distances2[k] + p.eps2));
+    }
+    return smallest;
 }
 
+// Calls visit(slot, d, t) for every kept term of f_u = Σ_w weight_w d_uw^{−α}, where `slot`
+// is w's place in to.grid and the term is scaled by the nearest one's d*^α so that nothing
+// overflows: t = weight_w (d*/d_uw)^α. Returns d*, so that log f_u = log Σt − α log d*.
+// (With descriptors, d and d* are the distances of R^{3+k}.)
 template <typename Visit>
 double visit_terms(const Side& from, const Side& to, const Parameters& p, Eigen::Index u,
                    Neighbours& found, Visit&& visit) {
     const Eigen::Vector3d x = from.points.row(u).transpose();
     const detail::PointGrid& grid = *to.grid;
-    if (from.has_descriptors()) {
-        gather_with_descriptors(from, to, p, u, found);
-    } else if (p.truncation > 0) {
-        gather_within_radius(grid, x, p, to.total_weight, found);
-    } else {
+    if (p.truncation <= 0) {
         grid.collect_within(x, 0, std::numeric_limits<double>::infinity(), found);
+    } else if (from.has_descriptors()) {
+        gather_within_radius(
+            grid, x, p, to.total_weight,
+            [&](int rings) {
+                return smallest_scaled_with_descriptors(from, to, p, u, rings, found);
+            },
+            found);
+    } else {
+        gather_within_radius(
+            grid, x, p, to.total_weight,
+            [&](int rings) { return grid.min_scaled_distance(x, rings, p.eps2); }, found);
+    }
+    if (from.has_descriptors()) {
+        add_descriptor_distances(from, to, u, found);
     }
     double nearest2 = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < found.count; ++k) {

@@ -242,6 +242,16 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                                                        options.signature_guidance * diagonal);
     }
 
+    // d_H to a level's target, with ε that many times its mean edge length.
+    const auto distance_to_target = [&](const Level& level, double epsilon_factor,
+                                        const PointDescriptors& descriptors) {
+        return PseudoHausdorffEnergy(level.target,
+                                     {.alpha = options.alpha,
+                                      .epsilon = epsilon_factor * mean_edge_length(level.target),
+                                      .truncation = options.truncation},
+                                     descriptors);
+    };
+
     bool cancelled = false;
     // The flow of one level from `moved` (the template level's vertices, already placed).
     // `placement`: the similarity that took the template level to `moved`'s rest frame.
@@ -250,15 +260,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                                 const Similarity& placement, MatchPrior prior,
                                 const PointDescriptors& descriptors = {}) {
         const Level& level = pyramid[static_cast<std::size_t>(l)];
-        const auto distance_to_target = [&](double epsilon_factor) {
-            return PseudoHausdorffEnergy(
-                level.target,
-                {.alpha = options.alpha,
-                 .epsilon = epsilon_factor * mean_edge_length(level.target),
-                 .truncation = options.truncation},
-                descriptors);
-        };
-        const PseudoHausdorffEnergy energy = distance_to_target(1);
+        const PseudoHausdorffEnergy energy = distance_to_target(level, 1, descriptors);
         std::optional<PartModel> parts;
         if (options.parts) {  // this level's weights, joints moved with the template
             parts = restrict_to(*options.parts, level.original_vertex);
@@ -288,7 +290,8 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             // energies reported are all of the latter.
             descent.max_steps = iterations / 2;
             const FlowResult smooth = gradient_descent(
-                moved, distance_to_target(options.coarse_epsilon), *metric, descent);
+                moved, distance_to_target(level, options.coarse_epsilon, descriptors), *metric,
+                descent);
             descent.max_steps = iterations - smooth.steps;
             FlowResult flow = gradient_descent(smooth.mesh, energy, *metric, descent);
             flow.steps += smooth.steps;
@@ -316,51 +319,8 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     };
     std::size_t chosen = 0;
     FlowResult best;
-    if (guided) {
-        // The start chosen as below (or the only one), then the flow guided by the signatures
-        // from its rigid placement, then the plain d_H's. (Guiding from where the selection
-        // flow ended instead was worse on FAUST, the wolf and the small cat and centaur: limbs
-        // already settled on the wrong surface stay there.)
-        if (several_starts) {
-            const int selection_steps =
-                std::min(options.selection_iterations, options.max_iterations);
-            std::vector<FlowResult> flows;
-            for (const Similarity& similarity : starts) {
-                flows.push_back(flow_level(count - 1, placed(similarity), selection_steps,
-                                           similarity, MatchPrior::H1));
-                if (cancelled) {
-                    break;
-                }
-            }
-            chosen = choose_start(flows, *signatures, options.selection_tolerance);
-            best = std::move(flows[chosen]);
-        }
-        if (!cancelled) {
-            const TriangleMesh start_mesh = placed(starts[chosen]);
-            FlowResult guided_flow =
-                flow_level(count - 1, start_mesh, options.max_iterations, starts[chosen],
-                           options.prior, coarsest_descriptors);
-            if (cancelled) {
-                best = std::move(guided_flow);
-            } else {
-                best = flow_level(count - 1, guided_flow.mesh, options.max_iterations,
-                                  starts[chosen], options.prior);
-                best.steps += guided_flow.steps;
-                // The level reports the plain d_H, from the rigid start on.
-                best.energy.insert(
-                    best.energy.begin(),
-                    PseudoHausdorffEnergy(coarsest.target,
-                                          {.alpha = options.alpha,
-                                           .epsilon = mean_edge_length(coarsest.target),
-                                           .truncation = options.truncation})
-                        .value(start_mesh));
-            }
-        }
-    } else if (starts.size() == 1) {
-        best = flow_level(count - 1, placed(starts.front()), options.max_iterations, starts.front(),
-                          options.prior);
-    } else {
-        const int selection_steps = std::min(options.selection_iterations, options.max_iterations);
+    const int selection_steps = std::min(options.selection_iterations, options.max_iterations);
+    if (several_starts) {
         std::vector<FlowResult> flows;
         for (const Similarity& similarity : starts) {
             flows.push_back(flow_level(count - 1, placed(similarity), selection_steps, similarity,
@@ -371,18 +331,37 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         }
         chosen = choose_start(flows, *signatures, options.selection_tolerance);
         best = std::move(flows[chosen]);
-        if (!cancelled && options.prior != MatchPrior::H1) {
-            best = flow_level(count - 1, placed(starts[chosen]), options.max_iterations,
-                              starts[chosen], options.prior);
-        } else if (!cancelled && best.status != FlowStatus::Converged &&
-                   options.max_iterations > selection_steps) {
-            FlowResult more =
-                flow_level(count - 1, best.mesh, options.max_iterations - selection_steps,
-                           starts[chosen], options.prior);
-            more.steps += best.steps;
-            more.energy.insert(more.energy.begin(), best.energy.begin(), best.energy.end() - 1);
-            best = std::move(more);
+    }
+    if (cancelled) {
+        // Keep the selection flow's result.
+    } else if (guided) {
+        // The flow guided by the signatures from the chosen start's rigid placement, then the
+        // plain d_H's. (Guiding from where the selection flow ended instead was worse on FAUST,
+        // the wolf and the small cat and centaur: limbs already settled on the wrong surface
+        // stay there.)
+        const TriangleMesh start_mesh = placed(starts[chosen]);
+        FlowResult guided_flow = flow_level(count - 1, start_mesh, options.max_iterations,
+                                            starts[chosen], options.prior, coarsest_descriptors);
+        if (cancelled) {
+            best = std::move(guided_flow);
+        } else {
+            best = flow_level(count - 1, guided_flow.mesh, options.max_iterations, starts[chosen],
+                              options.prior);
+            best.steps += guided_flow.steps;
+            // The level reports the plain d_H, from the rigid start on.
+            best.energy.insert(best.energy.begin(),
+                               distance_to_target(coarsest, 1, {}).value(start_mesh));
         }
+    } else if (!several_starts || options.prior != MatchPrior::H1) {
+        best = flow_level(count - 1, placed(starts[chosen]), options.max_iterations, starts[chosen],
+                          options.prior);
+    } else if (best.status != FlowStatus::Converged && options.max_iterations > selection_steps) {
+        // The H1 selection flow goes on.
+        FlowResult more = flow_level(count - 1, best.mesh, options.max_iterations - selection_steps,
+                                     starts[chosen], options.prior);
+        more.steps += best.steps;
+        more.energy.insert(more.energy.begin(), best.energy.begin(), best.energy.end() - 1);
+        best = std::move(more);
     }
     const Similarity best_start = starts[chosen];
     result.initial_alignment = best_start;
