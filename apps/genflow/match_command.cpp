@@ -187,6 +187,12 @@ void register_match_command(CLI::App& app) {
                      "of the diagonal (points are near only if close and alike; 0 = off)")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
+    command
+        ->add_option("--eigenfunction-guidance", options->match.eigenfunction_guidance,
+                     "Weight of the Laplacian eigenfunctions, carried over by a functional map, "
+                     "in a second guided coarsest flow that tells left from right (0 = off)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
     command->add_flag("--implicit", options->match.implicit,
                       "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
     command->add_flag("--no-align", options->no_align,

@@ -14,7 +14,7 @@
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/mesh_size.h"
-#include "matching/heat_signatures.h"
+#include "matching/spectral_descriptors.h"
 #include "operators/triangle.h"
 
 namespace genflow {
@@ -71,12 +71,13 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         options.fine_iterations < 0 || options.levels < 0 || options.coarse_vertices < 100 ||
         options.selection_iterations < 0 || !detail::finite_at_least(options.coarse_epsilon, 1) ||
         !detail::finite_at_least(options.selection_tolerance, 0) ||
-        !detail::finite_at_least(options.signature_guidance, 0)) {
+        !detail::finite_at_least(options.signature_guidance, 0) ||
+        !detail::finite_at_least(options.eigenfunction_guidance, 0)) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
-            "coarse_vertices >= 100, coarse_epsilon >= 1, selection_tolerance >= 0 and "
-            "signature_guidance >= 0");
+            "coarse_vertices >= 100, coarse_epsilon >= 1, selection_tolerance >= 0, "
+            "signature_guidance >= 0 and eigenfunction_guidance >= 0");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -173,7 +174,7 @@ Embedding moved_embedding(const Embedding& embedding, const Similarity& similari
 // Of the flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
 // one whose heat kernel signatures agree best with the target's (MatchOptions::align).
 std::size_t choose_start(const std::vector<FlowResult>& flows,
-                         const detail::HeatSignatures& signatures, double tolerance) {
+                         const detail::SpectralDescriptors& spectral, double tolerance) {
     if (flows.size() < 2) {
         return 0;
     }
@@ -185,7 +186,7 @@ std::size_t choose_start(const std::vector<FlowResult>& flows,
     double best_agreement = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < flows.size(); ++k) {
         if (flows[k].energy.back() <= (1 + tolerance) * lowest) {
-            const double disagreement = signatures.discrepancy(flows[k].mesh.V);
+            const double disagreement = spectral.discrepancy(flows[k].mesh.V);
             if (disagreement < best_agreement) {
                 best_agreement = disagreement;
                 chosen = k;
@@ -232,14 +233,14 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     // Measured with the H1 prior only; under the quasi-rigid one it pulled a rigidly moved limb
     // 7 % off (the signatures of two samplings differ, and a rigid motion is what it can change).
     const bool guided = options.signature_guidance > 0 && options.prior == MatchPrior::H1;
-    std::optional<detail::HeatSignatures> signatures;
-    PointDescriptors coarsest_descriptors;  // of the coarsest template level at rest
+    std::optional<detail::SpectralDescriptors> spectral;
+    PointDescriptors signature_descriptors;  // of the coarsest template level at rest
     if (several_starts || guided) {
-        signatures.emplace(coarsest.template_mesh, coarsest.target);
+        spectral.emplace(coarsest.template_mesh, coarsest.target);
     }
     if (guided) {
-        coarsest_descriptors = signatures->descriptors(coarsest.template_mesh.V, coarsest.target.V,
-                                                       options.signature_guidance * diagonal);
+        signature_descriptors = spectral->signature_descriptors(
+            coarsest.template_mesh.V, coarsest.target.V, options.signature_guidance * diagonal);
     }
 
     // d_H to a level's target, with ε that many times its mean edge length.
@@ -329,29 +330,43 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 break;
             }
         }
-        chosen = choose_start(flows, *signatures, options.selection_tolerance);
+        chosen = choose_start(flows, *spectral, options.selection_tolerance);
         best = std::move(flows[chosen]);
     }
     if (cancelled) {
         // Keep the selection flow's result.
     } else if (guided) {
-        // The flow guided by the signatures from the chosen start's rigid placement, then the
-        // plain d_H's. (Guiding from where the selection flow ended instead was worse on FAUST,
-        // the wolf and the small cat and centaur: limbs already settled on the wrong surface
-        // stay there.)
+        // Each guided flow starts from the chosen start's rigid placement and is followed by one
+        // on the plain d_H. (Guiding from where the previous flow ended instead was worse on
+        // FAUST, the wolf and the small cat and centaur: limbs already settled on the wrong
+        // surface stay there; the eigenfunctions' guidance from the signature-guided match moved
+        // no paw of the horse and cats.) First guided by the signatures, then, if
+        // eigenfunction_guidance, by the eigenfunctions carried over by the functional map that
+        // this first match implies.
         const TriangleMesh start_mesh = placed(starts[chosen]);
-        FlowResult guided_flow = flow_level(count - 1, start_mesh, options.max_iterations,
-                                            starts[chosen], options.prior, coarsest_descriptors);
-        if (cancelled) {
-            best = std::move(guided_flow);
-        } else {
-            best = flow_level(count - 1, guided_flow.mesh, options.max_iterations, starts[chosen],
-                              options.prior);
-            best.steps += guided_flow.steps;
-            // The level reports the plain d_H, from the rigid start on.
-            best.energy.insert(best.energy.begin(),
-                               distance_to_target(coarsest, 1, {}).value(start_mesh));
+        int steps = 0;
+        const auto guided_then_plain = [&](const PointDescriptors& descriptors) {
+            FlowResult guided_flow = flow_level(count - 1, start_mesh, options.max_iterations,
+                                                starts[chosen], options.prior, descriptors);
+            steps += guided_flow.steps;
+            if (cancelled) {
+                return guided_flow;
+            }
+            FlowResult plain = flow_level(count - 1, guided_flow.mesh, options.max_iterations,
+                                          starts[chosen], options.prior);
+            steps += plain.steps;
+            return plain;
+        };
+        best = guided_then_plain(signature_descriptors);
+        if (!cancelled && options.eigenfunction_guidance > 0) {
+            best = guided_then_plain(spectral->eigenfunction_descriptors(
+                best.mesh.V, coarsest.template_mesh.V, coarsest.target.V,
+                options.eigenfunction_guidance * diagonal));
         }
+        best.steps = steps;
+        // The level reports the plain d_H, from the rigid start on.
+        best.energy.insert(best.energy.begin(),
+                           distance_to_target(coarsest, 1, {}).value(start_mesh));
     } else if (!several_starts || options.prior != MatchPrior::H1) {
         best = flow_level(count - 1, placed(starts[chosen]), options.max_iterations, starts[chosen],
                           options.prior);

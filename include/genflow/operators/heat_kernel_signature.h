@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "genflow/mesh.h"
+#include "genflow/operators/laplacian_eigenbasis.h"
 
 namespace genflow {
 
@@ -25,13 +26,19 @@ namespace genflow {
 /// (h ≈ 1 + (K − K̄)·t/3 on a closed surface of mean curvature K̄; exactly 1 on a round sphere),
 /// which makes it a pose-independent descriptor of where a vertex lies on a shape.
 ///
-/// The eigenproblem is solved densely, O(#V³): meant for coarse meshes (match() uses about 1000
-/// vertices). Vertices of zero mass (unreferenced, or only in degenerate faces) are left out of
-/// the eigenproblem and get 0.
+/// The eigenproblem is solved densely (laplacian_eigenbasis()), O(#V³): meant for coarse meshes
+/// (match() uses about 1000 vertices). Vertices of zero mass (unreferenced, or only in
+/// degenerate faces) are left out of the eigenproblem and get 0.
 /// \throws InvalidInput if the mesh is invalid (bad indices, non-finite coordinates), has zero
 ///         area or more than 4000 vertices, or a time is not positive and finite.
 [[nodiscard]] Eigen::MatrixXd heat_kernel_signature(
     const TriangleMesh& mesh,
+    const std::vector<double>& relative_times = default_heat_kernel_times());
+
+/// The same from an eigenbasis already computed (all its pairs are used).
+/// \throws InvalidInput if the basis has zero area or a time is not positive and finite.
+[[nodiscard]] Eigen::MatrixXd heat_kernel_signature(
+    const LaplacianEigenbasis& basis,
     const std::vector<double>& relative_times = default_heat_kernel_times());
 
 }  // namespace genflow

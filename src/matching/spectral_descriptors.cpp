@@ -1,0 +1,182 @@
+// SPDX-License-Identifier: MIT
+#include "matching/spectral_descriptors.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "genflow/exceptions.h"
+#include "genflow/matching/multiresolution.h"
+#include "genflow/operators/heat_kernel_signature.h"
+#include "genflow/operators/laplacian_eigenbasis.h"
+#include "genflow/operators/mass_matrix.h"
+
+namespace genflow::detail {
+
+namespace {
+
+// Enough for eigenfunction_descriptors() to choose from.
+constexpr Eigen::Index kKeptFunctions = 64;
+
+// What the spectral view keeps of one coarse mesh, for its vertices with area (those without
+// have no signature and no eigenfunction values).
+struct CoarseSpectrum {
+    std::vector<Eigen::Index> vertex;
+    Eigen::MatrixXd log_signature;
+    Eigen::MatrixXd functions;  // non-constant, ascending
+    Eigen::VectorXd masses;
+    Eigen::VectorXd values;  // of `functions`, times the area (dimensionless)
+};
+
+CoarseSpectrum coarse_spectrum(const TriangleMesh& coarse) {
+    const LaplacianEigenbasis basis = laplacian_eigenbasis(coarse);
+    const Eigen::MatrixXd signature = heat_kernel_signature(basis);
+    const Eigen::VectorXd masses = lumped_masses(coarse, MassType::Barycentric);
+    CoarseSpectrum result;
+    for (Eigen::Index i = 0; i < signature.rows(); ++i) {
+        if ((signature.row(i).array() > 0).all()) {
+            result.vertex.push_back(i);
+        }
+    }
+    const Eigen::Index count = std::min(kKeptFunctions, basis.values.size() - 1);
+    const auto kept = Eigen::seqN(1, count);
+    result.log_signature = signature(result.vertex, Eigen::all).array().log();
+    result.functions = basis.functions(result.vertex, kept);
+    result.masses = masses(result.vertex);
+    result.values = basis.values(kept) * basis.area;
+    return result;
+}
+
+// For each row of `from`, the nearest row of `to` (brute force: a few thousand rows).
+std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from, const Eigen::MatrixXd& to) {
+    // |a − b|² = |b|² − 2 a·b + |a|², the last the same for every b.
+    const Eigen::MatrixXd distance =
+        (-2 * from * to.transpose()).rowwise() + to.rowwise().squaredNorm().transpose();
+    std::vector<Eigen::Index> nearest(static_cast<std::size_t>(from.rows()));
+    for (Eigen::Index i = 0; i < from.rows(); ++i) {
+        distance.row(i).minCoeff(&nearest[static_cast<std::size_t>(i)]);
+    }
+    return nearest;
+}
+
+}  // namespace
+
+SpectralDescriptors::SpectralDescriptors(const TriangleMesh& template_mesh,
+                                         const TriangleMesh& target, Eigen::Index vertices)
+    : template_vertices_(template_mesh.V.rows()),
+      template_points_(Eigen::MatrixX3d(0, 3)),
+      target_points_(Eigen::MatrixX3d(0, 3)) {
+    const CoarseMesh coarse_template = coarsen(template_mesh, vertices);
+    CoarseSpectrum from = coarse_spectrum(coarse_template.mesh);
+    const CoarseMesh coarse_target = coarsen(target, vertices);
+    CoarseSpectrum to = coarse_spectrum(coarse_target.mesh);
+    if (from.vertex.empty() || to.vertex.empty()) {
+        throw InvalidInput("SpectralDescriptors: a mesh has no vertex with area");
+    }
+    for (const Eigen::Index k : from.vertex) {
+        template_vertex_.push_back(coarse_template.fine_vertex[static_cast<std::size_t>(k)]);
+    }
+    template_points_ = PointIndex(template_mesh.V(template_vertex_, Eigen::all));
+    target_points_ = PointIndex(coarse_target.mesh.V(to.vertex, Eigen::all));
+    template_log_signature_ = std::move(from.log_signature);
+    target_log_signature_ = std::move(to.log_signature);
+    template_functions_ = std::move(from.functions);
+    target_functions_ = std::move(to.functions);
+    template_masses_ = std::move(from.masses);
+    target_values_ = std::move(to.values);
+}
+
+std::vector<Eigen::Index> SpectralDescriptors::nearest_target_rows(
+    const Eigen::MatrixX3d& deformed) const {
+    if (deformed.rows() != template_vertices_) {
+        throw InvalidInput("SpectralDescriptors: the deformed template has " +
+                           std::to_string(deformed.rows()) + " vertices, not " +
+                           std::to_string(template_vertices_));
+    }
+    std::vector<Eigen::Index> nearest(template_vertex_.size());
+    for (std::size_t k = 0; k < template_vertex_.size(); ++k) {
+        nearest[k] = target_points_.nearest(deformed.row(template_vertex_[k]).transpose()).first;
+    }
+    return nearest;
+}
+
+double SpectralDescriptors::discrepancy(const Eigen::MatrixX3d& deformed) const {
+    const std::vector<Eigen::Index> nearest = nearest_target_rows(deformed);
+    std::vector<double> squared(nearest.size());
+    for (std::size_t k = 0; k < nearest.size(); ++k) {
+        squared[k] = (template_log_signature_.row(static_cast<Eigen::Index>(k)) -
+                      target_log_signature_.row(nearest[k]))
+                         .squaredNorm();
+    }
+    const auto middle = squared.begin() + static_cast<std::ptrdiff_t>(squared.size() / 2);
+    std::nth_element(squared.begin(), middle, squared.end());
+    return *middle;
+}
+
+namespace {
+
+// Each point's row of `values`, taken at the nearest point of `index`.
+Eigen::MatrixXd at_nearest(const Eigen::MatrixX3d& points, const PointIndex& index,
+                           const Eigen::MatrixXd& values) {
+    Eigen::MatrixXd result(points.rows(), values.cols());
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        result.row(i) = values.row(index.nearest(points.row(i).transpose()).first);
+    }
+    return result;
+}
+
+}  // namespace
+
+PointDescriptors SpectralDescriptors::signature_descriptors(const Eigen::MatrixX3d& template_points,
+                                                            const Eigen::MatrixX3d& target_points,
+                                                            double length) const {
+    const Eigen::RowVectorXd mean = template_log_signature_.colwise().mean();
+    const Eigen::RowVectorXd deviation =
+        (template_log_signature_.rowwise() - mean).array().square().colwise().mean().sqrt();
+    const auto times = static_cast<double>(template_log_signature_.cols());
+    // A time at which every template point has the same signature carries no information.
+    const Eigen::RowVectorXd scale =
+        (deviation.array() > 0).select(length / std::sqrt(times) / deviation.array(), 0.0);
+    const auto normalized = [&](const Eigen::MatrixXd& log_signature) {
+        return Eigen::MatrixXd((log_signature.rowwise() - mean).array().rowwise() * scale.array());
+    };
+    return {at_nearest(template_points, template_points_, normalized(template_log_signature_)),
+            at_nearest(target_points, target_points_, normalized(target_log_signature_))};
+}
+
+PointDescriptors SpectralDescriptors::eigenfunction_descriptors(
+    const Eigen::MatrixX3d& deformed, const Eigen::MatrixX3d& template_points,
+    const Eigen::MatrixX3d& target_points, double length, int functions) const {
+    std::vector<Eigen::Index> correspondence = nearest_target_rows(deformed);
+    const Eigen::Index count = std::min({static_cast<Eigen::Index>(std::max(functions, 1)),
+                                         template_functions_.cols(), target_functions_.cols()});
+    // Smooth over parts: ψ_k / √λ_k (with a floor, for meshes of several components).
+    const Eigen::ArrayXd values = target_values_.head(count).array();
+    const Eigen::RowVectorXd weight =
+        values.max(1e-3 * values.maxCoeff()).rsqrt().matrix().transpose();
+    // ψ(π(i)) ≈ φ(i) C, C fitted in the M-weighted least-squares sense (φ is M-orthonormal).
+    const auto fitted_map = [&](Eigen::Index size) -> Eigen::MatrixXd {
+        return template_functions_.leftCols(size).transpose() * template_masses_.asDiagonal() *
+               target_functions_(correspondence, Eigen::seqN(0, size));
+    };
+    constexpr Eigen::Index kFirstFunctions = 6;
+    for (Eigen::Index size = std::min(kFirstFunctions, count); size <= count; ++size) {
+        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(fitted_map(size),
+                                                    Eigen::ComputeFullU | Eigen::ComputeFullV);
+        const Eigen::MatrixXd orthogonal = svd.matrixU() * svd.matrixV().transpose();
+        const auto scaled = weight.head(size).asDiagonal();
+        correspondence = nearest_rows(template_functions_.leftCols(size) * orthogonal * scaled,
+                                      target_functions_.leftCols(size) * scaled);
+    }
+    const Eigen::MatrixXd target = target_functions_.leftCols(count) * weight.asDiagonal();
+    const Eigen::MatrixXd mapped =
+        template_functions_.leftCols(count) * fitted_map(count) * weight.asDiagonal();
+    const double spread = std::sqrt((target.rowwise() - target.colwise().mean()).squaredNorm() /
+                                    static_cast<double>(target.rows()));
+    const double scale = spread > 0 ? length / spread : 0;
+    return {at_nearest(template_points, template_points_, scale * mapped),
+            at_nearest(target_points, target_points_, scale * target)};
+}
+
+}  // namespace genflow::detail
