@@ -172,7 +172,8 @@ Embedding moved_embedding(const Embedding& embedding, const Similarity& similari
 }
 
 // Of the flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
-// one whose heat kernel signatures agree best with the target's (MatchOptions::align).
+// one whose correspondence agrees best with the target intrinsically (MatchOptions::align): the
+// lowest median signature discrepancy, divided by the map's consistency with the eigenbases.
 std::size_t choose_start(const std::vector<FlowResult>& flows,
                          const detail::SpectralDescriptors& spectral, double tolerance) {
     if (flows.size() < 2) {
@@ -186,7 +187,8 @@ std::size_t choose_start(const std::vector<FlowResult>& flows,
     double best_agreement = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < flows.size(); ++k) {
         if (flows[k].energy.back() <= (1 + tolerance) * lowest) {
-            const double disagreement = spectral.discrepancy(flows[k].mesh.V);
+            const double disagreement =
+                spectral.discrepancy(flows[k].mesh.V) / spectral.map_consistency(flows[k].mesh.V);
             if (disagreement < best_agreement) {
                 best_agreement = disagreement;
                 chosen = k;

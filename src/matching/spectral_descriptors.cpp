@@ -60,6 +60,17 @@ std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from, const Eigen:
     return nearest;
 }
 
+// The functional map C (size × size) fitted to a correspondence in the M-weighted least-squares
+// sense: ψ(π(i)) ≈ φ(i) C, which is C = φᵀ M ψ(π) as φ is M-orthonormal.
+Eigen::MatrixXd fitted_functional_map(const Eigen::MatrixXd& template_functions,
+                                      const Eigen::VectorXd& template_masses,
+                                      const Eigen::MatrixXd& target_functions,
+                                      const std::vector<Eigen::Index>& correspondence,
+                                      Eigen::Index size) {
+    return template_functions.leftCols(size).transpose() * template_masses.asDiagonal() *
+           target_functions(correspondence, Eigen::seqN(0, size));
+}
+
 }  // namespace
 
 SpectralDescriptors::SpectralDescriptors(const TriangleMesh& template_mesh,
@@ -114,6 +125,17 @@ double SpectralDescriptors::discrepancy(const Eigen::MatrixX3d& deformed) const 
     return *middle;
 }
 
+double SpectralDescriptors::map_consistency(const Eigen::MatrixX3d& deformed, int functions) const {
+    const std::vector<Eigen::Index> correspondence = nearest_target_rows(deformed);
+    const Eigen::Index count = std::min({static_cast<Eigen::Index>(std::max(functions, 1)),
+                                         template_functions_.cols(), target_functions_.cols()});
+    return Eigen::JacobiSVD<Eigen::MatrixXd>(
+               fitted_functional_map(template_functions_, template_masses_, target_functions_,
+                                     correspondence, count))
+        .singularValues()
+        .mean();
+}
+
 namespace {
 
 // Each point's row of `values`, taken at the nearest point of `index`.
@@ -155,10 +177,9 @@ PointDescriptors SpectralDescriptors::eigenfunction_descriptors(
     const Eigen::ArrayXd values = target_values_.head(count).array();
     const Eigen::RowVectorXd weight =
         values.max(1e-3 * values.maxCoeff()).rsqrt().matrix().transpose();
-    // ψ(π(i)) ≈ φ(i) C, C fitted in the M-weighted least-squares sense (φ is M-orthonormal).
-    const auto fitted_map = [&](Eigen::Index size) -> Eigen::MatrixXd {
-        return template_functions_.leftCols(size).transpose() * template_masses_.asDiagonal() *
-               target_functions_(correspondence, Eigen::seqN(0, size));
+    const auto fitted_map = [&](Eigen::Index size) {
+        return fitted_functional_map(template_functions_, template_masses_, target_functions_,
+                                     correspondence, size);
     };
     constexpr Eigen::Index kFirstFunctions = 6;
     for (Eigen::Index size = std::min(kFirstFunctions, count); size <= count; ++size) {

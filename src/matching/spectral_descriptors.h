@@ -41,6 +41,18 @@ public:
     /// \throws InvalidInput if `deformed` does not have the template's vertex count.
     [[nodiscard]] double discrepancy(const Eigen::MatrixX3d& deformed) const;
 
+    /// How close the correspondence of `deformed` (each template point with the target point
+    /// nearest to where it was put) comes to preserving the `functions` lowest eigenfunctions:
+    /// the mean singular value of the functional map C fitted to it in the least-squares sense
+    /// (φ C ≈ ψ at corresponding points). A near-isometry maps the M-orthonormal φ onto
+    /// M-orthonormal functions (all singular values 1); a correspondence that folds parts onto
+    /// one another (a start turned front to back, the flow then fitting the limbs wherever they
+    /// are nearest) loses the functions that tell those parts apart, and their singular values
+    /// fall. Scale-free, between 0 and about 1.
+    /// \throws InvalidInput if `deformed` does not have the template's vertex count.
+    [[nodiscard]] double map_consistency(const Eigen::MatrixX3d& deformed,
+                                         int functions = 20) const;
+
     /// Descriptors of d_H for points of the template at rest (`template_points`, in the frame
     /// of the template given to the constructor) and of the target (`target_points`): the log
     /// signature of the nearest signature vertex, centred and divided per diffusion time by the

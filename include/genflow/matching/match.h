@@ -91,9 +91,11 @@ struct MatchOptions {
     /// head to tail), and after a flow a flipped start can fit the target's surface about as
     /// closely as the right one. So the best `alignment_candidates` distinct rigid starts each
     /// flow `selection_iterations` steps on the coarsest level, and d_H only shortlists them:
-    /// of the starts whose d_H is within `selection_tolerance` of the lowest, the one whose heat
-    /// kernel signatures agree best with the target's at the points it reached goes on
-    /// (detail::SpectralDescriptors) and flows in the prior's metric.
+    /// of the starts whose d_H is within `selection_tolerance` of the lowest, the one whose
+    /// correspondence agrees best with the target intrinsically goes on and flows in the prior's
+    /// metric: the lowest median discrepancy of the heat kernel signatures at the points it
+    /// reached, divided by how nearly the correspondence preserves the 20 lowest Laplacian
+    /// eigenfunctions (detail::SpectralDescriptors::map_consistency()).
     ///
     /// The selection flows run in the H1 metric whatever the prior: it lets the template reach
     /// the target's surface, so that the signatures are compared at the right places. After
@@ -101,8 +103,11 @@ struct MatchOptions {
     /// 52 runs of docs/eval/results.md (L2 centaur, rigid cat and small centaur, isometric
     /// small cat, articulated FAUST) where the H1 flows chose rightly. Measured on the 12 pairs
     /// of $GENFLOW_DATA: the lowest rigid-fit d_H picks the right start on 8 pairs, the lowest
-    /// d_H after the flows on 8, the shortlist on 11; the miss is TOSCA michael, where the
-    /// chosen start is partly turned (13 % error at the coarsest level against 6 %).
+    /// d_H after the flows on 8, the shortlist by the signatures alone on 11, with the map's
+    /// consistency on 12. The signatures alone missed TOSCA michael: they preferred a start
+    /// turned front to back (0.44 against 0.47; 13 % error at the coarsest level against 6 %),
+    /// whose map is less consistent (0.78 against 0.88; on the other pairs the right start's
+    /// is the highest or within 0.05 of it, and its discrepancy the lowest by far).
     bool align = true;
     int alignment_candidates = 6;
     int selection_iterations = 300;
