@@ -232,9 +232,12 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
 
     const Level& coarsest = pyramid.back();
     const bool several_starts = starts.size() > 1;
-    // Measured with the H1 prior only; under the quasi-rigid one it pulled a rigidly moved limb
-    // 7 % off (the signatures of two samplings differ, and a rigid motion is what it can change).
-    const bool guided = options.signature_guidance > 0 && options.prior == MatchPrior::H1;
+    // Measured per prior (MatchOptions::signature_guidance): h1 and articulated gain; the
+    // quasi-rigid flow pulled a rigidly moved limb 7 % off, the quasi-isometric one lost its
+    // edge lengths; L2 stays the unguided baseline.
+    const bool guided =
+        options.signature_guidance > 0 &&
+        (options.prior == MatchPrior::H1 || options.prior == MatchPrior::Articulated);
     std::optional<detail::SpectralDescriptors> spectral;
     PointDescriptors signature_descriptors;  // of the coarsest template level at rest
     if (several_starts || guided) {
