@@ -10,7 +10,6 @@
 #include "genflow/matching/multiresolution.h"
 #include "genflow/operators/heat_kernel_signature.h"
 #include "genflow/operators/laplacian_eigenbasis.h"
-#include "genflow/operators/mass_matrix.h"
 
 namespace genflow::detail {
 
@@ -32,7 +31,6 @@ struct CoarseSpectrum {
 CoarseSpectrum coarse_spectrum(const TriangleMesh& coarse) {
     const LaplacianEigenbasis basis = laplacian_eigenbasis(coarse);
     const Eigen::MatrixXd signature = heat_kernel_signature(basis);
-    const Eigen::VectorXd masses = lumped_masses(coarse, MassType::Barycentric);
     CoarseSpectrum result;
     for (Eigen::Index i = 0; i < signature.rows(); ++i) {
         if ((signature.row(i).array() > 0).all()) {
@@ -43,8 +41,8 @@ CoarseSpectrum coarse_spectrum(const TriangleMesh& coarse) {
     const auto kept = Eigen::seqN(1, count);
     result.log_signature = signature(result.vertex, Eigen::all).array().log();
     result.functions = basis.functions(result.vertex, kept);
-    result.masses = masses(result.vertex);
-    result.values = basis.values(kept) * basis.area;
+    result.masses = basis.masses(result.vertex);
+    result.values = basis.values(kept) * basis.masses.sum();
     return result;
 }
 
@@ -125,10 +123,14 @@ double SpectralDescriptors::discrepancy(const Eigen::MatrixX3d& deformed) const 
     return *middle;
 }
 
+Eigen::Index SpectralDescriptors::function_count(int functions) const {
+    return std::min({static_cast<Eigen::Index>(std::max(functions, 1)), template_functions_.cols(),
+                     target_functions_.cols()});
+}
+
 double SpectralDescriptors::map_consistency(const Eigen::MatrixX3d& deformed, int functions) const {
     const std::vector<Eigen::Index> correspondence = nearest_target_rows(deformed);
-    const Eigen::Index count = std::min({static_cast<Eigen::Index>(std::max(functions, 1)),
-                                         template_functions_.cols(), target_functions_.cols()});
+    const Eigen::Index count = function_count(functions);
     return Eigen::JacobiSVD<Eigen::MatrixXd>(
                fitted_functional_map(template_functions_, template_masses_, target_functions_,
                                      correspondence, count))
@@ -171,8 +173,7 @@ PointDescriptors SpectralDescriptors::eigenfunction_descriptors(
     const Eigen::MatrixX3d& deformed, const Eigen::MatrixX3d& template_points,
     const Eigen::MatrixX3d& target_points, double length, int functions) const {
     std::vector<Eigen::Index> correspondence = nearest_target_rows(deformed);
-    const Eigen::Index count = std::min({static_cast<Eigen::Index>(std::max(functions, 1)),
-                                         template_functions_.cols(), target_functions_.cols()});
+    const Eigen::Index count = function_count(functions);
     // Smooth over parts: ψ_k / √λ_k (with a floor, for meshes of several components).
     const Eigen::ArrayXd values = target_values_.head(count).array();
     const Eigen::RowVectorXd weight =

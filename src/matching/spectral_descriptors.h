@@ -95,6 +95,8 @@ private:
     Eigen::VectorXd template_masses_;
     Eigen::VectorXd target_values_;  // the target's non-constant eigenvalues, times its area
 
+    // `functions` (at least 1) as far as both meshes have non-constant eigenfunctions.
+    [[nodiscard]] Eigen::Index function_count(int functions) const;
     // The target signature row nearest to where `deformed` puts each template signature row.
     [[nodiscard]] std::vector<Eigen::Index> nearest_target_rows(
         const Eigen::MatrixX3d& deformed) const;

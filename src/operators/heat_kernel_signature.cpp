@@ -25,7 +25,8 @@ Eigen::MatrixXd heat_kernel_signature(const LaplacianEigenbasis& basis,
             throw InvalidInput("heat_kernel_signature: times must be positive and finite");
         }
     }
-    if (!(basis.area > 0)) {
+    const double area = basis.masses.sum();
+    if (!(area > 0)) {
         throw InvalidInput("heat_kernel_signature: the mesh has zero area");
     }
     const Eigen::MatrixXd squared_functions = basis.functions.array().square().matrix();
@@ -33,9 +34,9 @@ Eigen::MatrixXd heat_kernel_signature(const LaplacianEigenbasis& basis,
                               static_cast<Eigen::Index>(relative_times.size()));
     for (std::size_t s = 0; s < relative_times.size(); ++s) {
         const Eigen::VectorXd decay =
-            (-basis.values * (relative_times[s] * basis.area)).array().exp().matrix();
+            (-basis.values * (relative_times[s] * area)).array().exp().matrix();
         signature.col(static_cast<Eigen::Index>(s)) =
-            squared_functions * decay * (basis.area / decay.sum());
+            squared_functions * decay * (area / decay.sum());
     }
     return signature;
 }

@@ -22,10 +22,10 @@ LaplacianEigenbasis laplacian_eigenbasis(const TriangleMesh& mesh) {
                            " vertices, at most " + std::to_string(kMaxVertices) +
                            " (coarsen the mesh first)");
     }
-    const Eigen::VectorXd mass = lumped_masses(mesh, MassType::Barycentric);
     LaplacianEigenbasis basis;
-    basis.area = mass.sum();
-    if (!(basis.area > 0)) {
+    basis.masses = lumped_masses(mesh, MassType::Barycentric);
+    const Eigen::VectorXd& mass = basis.masses;
+    if (!(mass.sum() > 0)) {
         throw InvalidInput("laplacian_eigenbasis: the mesh has zero area");
     }
     // The vertices with mass, numbered densely.

@@ -15,8 +15,8 @@ struct LaplacianEigenbasis {
     /// #V × #values, column k is φ_k. The columns are M-orthonormal (φ_kᵀ M φ_l = δ_kl); the
     /// rows of vertices without mass (unreferenced, or only in degenerate faces) are 0.
     Eigen::MatrixXd functions;
-    /// The surface area (the sum of the masses).
-    double area = 0;
+    /// The lumped masses m_i (barycentric) of M, whose sum is the surface area.
+    Eigen::VectorXd masses;
 };
 
 /// The eigenbasis of `mesh`'s Laplace–Beltrami operator (the basis of heat_kernel_signature()
