@@ -23,8 +23,14 @@ namespace genflow {
 namespace {
 
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
-// Below this many points a thread team costs more than it saves.
+// Below this many points a thread team costs more than it saves: for the neighbour sums, and
+// for the loops of a few operations per point (whose team is worth it on large meshes only,
+// and whose barriers cost most when the cores are shared).
 constexpr Eigen::Index kParallelThreshold = 2000;
+constexpr Eigen::Index kParallelLoopThreshold = 20000;
+// The shells of shell_radius2(): this many per grid cell, and at most this many per query.
+constexpr int kShellsPerCell = 4;
+constexpr int kMaxShells = 4096;
 
 int thread_count() {
 #ifdef _OPENMP
@@ -42,7 +48,8 @@ int thread_id() {
 #endif
 }
 
-// log Σ exp(v) over the finite entries; −inf if there is none.
+// log Σ exp(v) over the finite entries; −inf if there is none. The threads sum fixed blocks,
+// added in thread order: the result does not depend on the scheduling.
 double log_sum_exp(const std::vector<double>& values) {
     double largest = kMinusInfinity;
     for (const double v : values) {
@@ -51,9 +58,20 @@ double log_sum_exp(const std::vector<double>& values) {
     if (largest == kMinusInfinity) {
         return kMinusInfinity;
     }
+    std::vector<double> partial(static_cast<std::size_t>(thread_count()), 0.0);
+    const auto count = static_cast<std::ptrdiff_t>(values.size());
+#pragma omp parallel if (count > kParallelLoopThreshold)
+    {
+        double sum = 0;
+#pragma omp for schedule(static)
+        for (std::ptrdiff_t k = 0; k < count; ++k) {
+            sum += std::exp(values[static_cast<std::size_t>(k)] - largest);
+        }
+        partial[static_cast<std::size_t>(thread_id())] = sum;
+    }
     double sum = 0;
-    for (const double v : values) {
-        sum += std::exp(v - largest);
+    for (const double part : partial) {
+        sum += part;
     }
     return largest + std::log(sum);
 }
@@ -83,42 +101,62 @@ struct Side {
     Eigen::VectorXd log_weight;         // −inf for zero-mass vertices
     std::vector<std::uint32_t> active;  // vertices with positive weight
     double total_weight = 0;
-    std::unique_ptr<detail::PointGrid> grid;  // over `active` (grid ids index `active`)
-    RowMatrixXd descriptors;                  // per point (PointDescriptors), or no columns
-    RowMatrixXd slot_descriptors;             // the same rows in the grid's slot order
+    detail::PointGrid grid;        // over `active` (grid ids index `active`)
+    RowMatrixXd descriptors;       // per point (PointDescriptors), or no columns
+    RowMatrixXd slot_descriptors;  // the same rows in the grid's slot order
+    // The shells of shell_radius2() about a query: ρ_k = k·shell_step, and 1/(ρ_k² + ε²).
+    double shell_step = 1;
+    std::vector<double> inverse_shell_d;
 
+    Side() = default;
     Side(const Eigen::MatrixX3d& positions, const Eigen::VectorXd& masses,
-         const PseudoHausdorffOptions& options, const Eigen::MatrixXd& point_descriptors)
-        : points(positions), descriptors(point_descriptors) {
+         const PseudoHausdorffOptions& options, const Eigen::MatrixXd& point_descriptors) {
+        assign(positions, masses, options, point_descriptors);
+    }
+
+    // Refills this side in place: the moving side is rebuilt at every evaluation, and reusing
+    // its buffers spares the page faults of fresh ones.
+    void assign(const Eigen::MatrixX3d& positions, const Eigen::VectorXd& masses,
+                const PseudoHausdorffOptions& options, const Eigen::MatrixXd& point_descriptors) {
+        points = positions;
+        descriptors = point_descriptors;
         const double mass = masses.sum();
         const double normalizer =
             options.weights == HausdorffWeights::Paper ? static_cast<double>(masses.size()) : mass;
-        log_weight.resize(masses.size());
+        active.clear();
+        total_weight = 0;
         for (Eigen::Index i = 0; i < masses.size(); ++i) {
             if (masses[i] > 0) {
-                log_weight[i] = std::log(masses[i] / normalizer);
                 total_weight += masses[i] / normalizer;
                 active.push_back(static_cast<std::uint32_t>(i));
-            } else {
-                log_weight[i] = kMinusInfinity;
             }
         }
+        log_weight.resize(masses.size());
         const auto n = static_cast<Eigen::Index>(active.size());
+        grid_points_.resize(n, 3);
+        grid_weights_.resize(n);
+        grid_factors_.resize(n);
+        // κ_m² of gather_within_radius: (W/(weight_m τ))^{1/α}.
+        const double log_kappa_base =
+            options.truncation > 0 ? std::log(total_weight) - std::log(options.truncation) : 0;
+#pragma omp parallel if (masses.size() > kParallelLoopThreshold)
+        {
+#pragma omp for schedule(static)
+            for (Eigen::Index i = 0; i < masses.size(); ++i) {
+                log_weight[i] = masses[i] > 0 ? std::log(masses[i] / normalizer) : kMinusInfinity;
+            }
+#pragma omp for schedule(static)
+            for (Eigen::Index k = 0; k < n; ++k) {
+                const std::uint32_t i = active[static_cast<std::size_t>(k)];
+                grid_points_.row(k) = points.row(i);
+                grid_weights_[k] = masses[i] / normalizer;
+                grid_factors_[k] = options.truncation > 0
+                                       ? std::exp((log_kappa_base - log_weight[i]) / options.alpha)
+                                       : 1.0;
+            }
+        }
         if (n == 0) {
             return;
-        }
-        Eigen::MatrixX3d active_points(n, 3);
-        Eigen::VectorXd weights(n);
-        Eigen::VectorXd kappa2 = Eigen::VectorXd::Ones(n);
-        for (Eigen::Index k = 0; k < n; ++k) {
-            const std::uint32_t i = active[static_cast<std::size_t>(k)];
-            active_points.row(k) = points.row(i);
-            weights[k] = std::exp(log_weight[i]);
-            if (options.truncation > 0) {  // κ_m² of visit_terms
-                kappa2[k] = std::exp(
-                    (std::log(total_weight) - log_weight[i] - std::log(options.truncation)) /
-                    options.alpha);
-            }
         }
         // The radius of a query whose nearest point has the mean weight and lies one mean
         // spacing s away (s² ≈ area per point): κ² (s² + ε²) with κ² = (n/τ)^{1/α}. Cells of a
@@ -133,17 +171,36 @@ struct Side {
                              (spacing2 + eps2)) /
                    3;
         }
-        grid = std::make_unique<detail::PointGrid>(active_points, weights, kappa2, cell);
+        grid.rebuild(grid_points_, grid_weights_, grid_factors_, cell);
+        if (options.truncation > 0) {
+            // Slightly inside the cells, so that rounding cannot put a point closer than
+            // ρ_{k+1} outside the block of ⌈ρ_{k+1}/cell⌉ rings.
+            shell_step = grid.cell_size() * (1 - 1e-9) / kShellsPerCell;
+            const double eps2 = options.epsilon * options.epsilon;
+            inverse_shell_d.resize(kMaxShells + 1);
+            for (int k = 0; k <= kMaxShells; ++k) {
+                const double rho = static_cast<double>(k) * shell_step;
+                inverse_shell_d[static_cast<std::size_t>(k)] = 1 / (rho * rho + eps2);
+            }
+        }
         if (descriptors.cols() > 0) {
             slot_descriptors.resize(n, descriptors.cols());
             for (Eigen::Index slot = 0; slot < n; ++slot) {
                 slot_descriptors.row(slot) =
-                    descriptors.row(active[grid->id(static_cast<std::uint32_t>(slot))]);
+                    descriptors.row(active[grid.id(static_cast<std::uint32_t>(slot))]);
             }
         }
     }
 
-    [[nodiscard]] bool has_descriptors() const { return descriptors.cols() > 0; }
+    [[nodiscard]] bool has_descriptors() const {
+        return descriptors.cols() > 0;
+    }
+
+private:
+    // The active points, their weights and κ² in `active` order, for the grid.
+    Eigen::MatrixX3d grid_points_;
+    Eigen::VectorXd grid_weights_;
+    Eigen::VectorXd grid_factors_;
 };
 
 struct Parameters {
@@ -151,7 +208,7 @@ struct Parameters {
     int integer_alpha;  // α when it is an integer in [1, 64], else 0
     double eps2;
     double truncation;
-    std::size_t stored_term_budget;
+    double largest_shell_ratio;  // e^{600/α}: ψ_k = ratio^α stays below e^600
 };
 
 using Neighbours = detail::NeighbourList;
@@ -166,45 +223,44 @@ using Neighbours = detail::NeighbourList;
 // radius ρ_K; E, the first shell with ρ_E² + ε² ≥ D, has φ_E W ≤ W D^{−α} already. The sums
 // run in units of W D^{−α}, ψ_k = (D/(ρ_k² + ε²))^α, and stop before they could overflow.
 // Returns +inf when no shell can be dropped.
-double shell_radius2(const detail::PointGrid& grid, const Eigen::Vector3d& x, double D,
-                     const Parameters& p, double total_weight) {
-    constexpr int kShellsPerCell = 4;
+double shell_radius2(const Side& to, const Eigen::Vector3d& x, double D, const Parameters& p) {
     constexpr double kNoShell = std::numeric_limits<double>::infinity();
-    // Slightly inside the cells, so that rounding cannot put a point closer than ρ_{k+1}
-    // outside the block of ⌈ρ_{k+1}/cell⌉ rings.
-    const double step = grid.cell_size() * (1 - 1e-9) / kShellsPerCell;
+    const double step = to.shell_step;
     const double reach2 = D - p.eps2;
     if (!(reach2 > 0)) {
         return kNoShell;
     }
-    constexpr int kMaxShells = 4096;  // beyond, far apart: nearly all of W lies beyond any ρ_K
     if (!(std::sqrt(reach2) <= kMaxShells * step)) {
-        return kNoShell;
+        return kNoShell;  // far apart: nearly all of W lies beyond any ρ_K
     }
     const int end = static_cast<int>(std::ceil(std::sqrt(reach2) / step));
-    const double log_D = std::log(D);
-    const auto log_psi = [&](int k) {
-        const double rho = static_cast<double>(k) * step;
-        return p.alpha * (log_D - std::log(rho * rho + p.eps2));
+    // ψ_k = (D/(ρ_k² + ε²))^α from the side's table of 1/(ρ_k² + ε²).
+    const auto psi = [&](int k) {
+        return ratio_power(D * to.inverse_shell_d[static_cast<std::size_t>(k)], p.alpha,
+                           p.integer_alpha);
     };
-    double tail = std::exp(std::min(log_psi(end), 0.0));  // φ_E W: at most 1
+    double tail = std::min(psi(end), 1.0);  // φ_E W: at most 1
     double psi_next = tail;
     int first_kept = end;
+    int rings = 0;
+    double fraction = 0;
     for (int k = end - 1; k >= 1; --k) {
-        const double log_psi_k = log_psi(k);
-        if (log_psi_k > 600) {
-            break;
+        if (D * to.inverse_shell_d[static_cast<std::size_t>(k)] > p.largest_shell_ratio) {
+            break;  // ψ_k would overflow
         }
-        const double psi = std::exp(log_psi_k);
-        const int rings = (k + kShellsPerCell) / kShellsPerCell;  // ⌈(k + 1)/kShellsPerCell⌉
-        // (+1e-12: the prefix sums may round a block's weight down.)
-        const double fraction =
-            std::clamp(grid.block_weight(x, rings) / total_weight + 1e-12, 0.0, 1.0);
-        tail += (psi - psi_next) * fraction;
+        const double psi_k = psi(k);
+        const int rings_k = (k + kShellsPerCell) / kShellsPerCell;  // ⌈(k + 1)/kShellsPerCell⌉
+        if (rings_k != rings) {
+            rings = rings_k;
+            // (+1e-12: the prefix sums may round a block's weight down.)
+            fraction =
+                std::clamp(to.grid.block_weight(x, rings) / to.total_weight + 1e-12, 0.0, 1.0);
+        }
+        tail += (psi_k - psi_next) * fraction;
         if (tail > 1) {
             break;
         }
-        psi_next = psi;
+        psi_next = psi_k;
         first_kept = k;
     }
     const double rho = static_cast<double>(first_kept) * step;
@@ -219,15 +275,15 @@ double shell_radius2(const detail::PointGrid& grid, const Eigen::Vector3d& x, do
 // many rings, 0 for all points; +inf for an empty block), gives a radius; shell_radius2()
 // shrinks it.
 template <typename SmallestScaled>
-double gather_within_radius(const detail::PointGrid& grid, const Eigen::Vector3d& x,
-                            const Parameters& p, double total_weight,
+double gather_within_radius(const Side& to, const Eigen::Vector3d& x, const Parameters& p,
                             SmallestScaled&& smallest_scaled, Neighbours& found) {
+    const detail::PointGrid& grid = to.grid;
     double radius2 = std::numeric_limits<double>::infinity();
     for (const int rings : {1, 4, 0}) {
         const double radius_d = smallest_scaled(rings);
         if (radius_d < std::numeric_limits<double>::infinity()) {
-            radius2 = std::min((radius_d - p.eps2) * (1 + 1e-12),
-                               shell_radius2(grid, x, radius_d, p, total_weight));
+            radius2 =
+                std::min((radius_d - p.eps2) * (1 + 1e-12), shell_radius2(to, x, radius_d, p));
             break;  // the last pass, over all points, always finds one
         }
     }
@@ -252,7 +308,7 @@ void add_descriptor_distances(const Side& from, const Side& to, Eigen::Index u, 
 // with d ≤ D; the shell bound stays valid because the descriptors only make each term smaller.
 double smallest_scaled_with_descriptors(const Side& from, const Side& to, const Parameters& p,
                                         Eigen::Index u, int rings, Neighbours& found) {
-    const detail::PointGrid& grid = *to.grid;
+    const detail::PointGrid& grid = to.grid;
     grid.collect_within(from.points.row(u).transpose(), rings,
                         std::numeric_limits<double>::infinity(), found);
     add_descriptor_distances(from, to, u, found);
@@ -263,28 +319,31 @@ double smallest_scaled_with_descriptors(const Side& from, const Side& to, const 
     return smallest;
 }
 
-// Calls visit(slot, d, t) for every kept term of f_u = Σ_w weight_w d_uw^{−α}, where `slot`
-// is w's place in to.grid and the term is scaled by the nearest one's d*^α so that nothing
-// overflows: t = weight_w (d*/d_uw)^α. Returns d*, so that log f_u = log Σt − α log d*.
+// The kept terms of f_u = Σ_w weight_w d_uw^{−α}, each scaled by the nearest one's d*^α so that
+// nothing overflows: t_w = weight_w (d*/d_uw)^α. Leaves in `found.slots` the places of the kept
+// w in to.grid and in `term_over_d` (grown as needed) t_w/d_uw, which the gradient needs.
 // (With descriptors, d and d* are the distances of R^{3+k}.)
-template <typename Visit>
-double visit_terms(const Side& from, const Side& to, const Parameters& p, Eigen::Index u,
-                   Neighbours& found, Visit&& visit) {
+struct KeptTerms {
+    double sum;    // Σ_w t_w
+    double log_f;  // log f_u = log Σt − α log d*
+};
+
+KeptTerms weigh_terms(const Side& from, const Side& to, const Parameters& p, Eigen::Index u,
+                      Neighbours& found, std::vector<double>& term_over_d) {
     const Eigen::Vector3d x = from.points.row(u).transpose();
-    const detail::PointGrid& grid = *to.grid;
+    const detail::PointGrid& grid = to.grid;
     if (p.truncation <= 0) {
         grid.collect_within(x, 0, std::numeric_limits<double>::infinity(), found);
     } else if (from.has_descriptors()) {
         gather_within_radius(
-            grid, x, p, to.total_weight,
+            to, x, p,
             [&](int rings) {
                 return smallest_scaled_with_descriptors(from, to, p, u, rings, found);
             },
             found);
     } else {
         gather_within_radius(
-            grid, x, p, to.total_weight,
-            [&](int rings) { return grid.min_scaled_distance(x, rings, p.eps2); }, found);
+            to, x, p, [&](int rings) { return grid.min_scaled_distance(x, rings, p.eps2); }, found);
     }
     if (from.has_descriptors()) {
         add_descriptor_distances(from, to, u, found);
@@ -294,12 +353,18 @@ double visit_terms(const Side& from, const Side& to, const Parameters& p, Eigen:
         nearest2 = std::min(nearest2, found.distances2[k]);
     }
     const double d_star = nearest2 + p.eps2;  // κ_m ≥ 1: the point m itself is kept
-    for (std::size_t k = 0; k < found.count; ++k) {
-        const std::uint32_t slot = found.slots[k];
-        const double d = found.distances2[k] + p.eps2;
-        visit(slot, d, grid.weight(slot) * ratio_power(d_star / d, p.alpha, p.integer_alpha));
+    if (term_over_d.size() < found.count) {
+        term_over_d.resize(std::max(found.count, 2 * term_over_d.size()));
     }
-    return d_star;
+    double sum = 0;
+    for (std::size_t k = 0; k < found.count; ++k) {
+        const double inverse_d = 1 / (found.distances2[k] + p.eps2);
+        const double t =
+            grid.weight(found.slots[k]) * ratio_power(d_star * inverse_d, p.alpha, p.integer_alpha);
+        sum += t;
+        term_over_d[k] = t * inverse_d;
+    }
+    return {sum, std::log(sum) - p.alpha * std::log(d_star)};
 }
 
 using RowMatrixX4d = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor>;
@@ -317,7 +382,7 @@ SourceSums sum_source(const Side& source, const Side& target, const Parameters& 
     const Eigen::Index count = source.points.rows();
     SourceSums sums{Eigen::VectorXd::Constant(count, kMinusInfinity), RowMatrixX4d::Zero(count, 4),
                     0};
-    const detail::PointGrid& grid = *target.grid;
+    const detail::PointGrid& grid = target.grid;
     // Queries in the cell order of their own grid: neighbouring queries share their terms
     // in cache.
     const std::size_t queries = source.active.size();
@@ -325,64 +390,45 @@ SourceSums sum_source(const Side& source, const Side& target, const Parameters& 
 #pragma omp parallel reduction(+ : pairs) if (count > kParallelThreshold)
     {
         Neighbours found;
+        std::vector<double> term_over_d;
 #pragma omp for schedule(static, 128)
         for (std::size_t slot = 0; slot < queries; ++slot) {
-            const std::uint32_t i =
-                source.active[source.grid->id(static_cast<std::uint32_t>(slot))];
-            double sum = 0;
-            Eigen::RowVector4d moment = Eigen::RowVector4d::Zero();
-            const double d_star = visit_terms(
-                source, target, p, i, found, [&](std::uint32_t term, double d, double t) {
-                    sum += t;
-                    const double s = t / d;
-                    moment[0] += s;
-                    moment.tail<3>() += s * grid.position(term).transpose();
-                });
+            const std::uint32_t i = source.active[source.grid.id(static_cast<std::uint32_t>(slot))];
+            const KeptTerms terms = weigh_terms(source, target, p, i, found, term_over_d);
+            double s0 = 0;
+            double sx = 0;
+            double sy = 0;
+            double sz = 0;
+            for (std::size_t k = 0; k < found.count; ++k) {
+                const double s = term_over_d[k];
+                const Eigen::Vector3d y = grid.position(found.slots[k]);
+                s0 += s;
+                sx += s * y[0];
+                sy += s * y[1];
+                sz += s * y[2];
+            }
             pairs += found.count;
-            sums.log_f[i] = std::log(sum) - p.alpha * std::log(d_star);
-            sums.moments.row(i) = moment / sum;
+            sums.log_f[i] = terms.log_f;
+            sums.moments.row(i) = Eigen::RowVector4d(s0, sx, sy, sz) / terms.sum;
         }
     }
     sums.pairs = pairs;
     return sums;
 }
 
-// A kept term of g_j for the gradient pass: the source point i and share_ji/d_ij with
-// share_ji = a_i d_ij^{−α}/g_j.
-struct TargetTerm {
-    std::uint32_t source;
-    std::uint32_t target;
-    double share_over_d;
-};
-
 // Per-thread buffers of the target side, reused from one evaluation to the next.
 struct Workspace {
-    std::vector<std::vector<TargetTerm>> kept;       // per thread
-    std::vector<std::vector<std::uint32_t>> redone;  // per thread: points to query again
+    Side source;                        // the moving side, refilled by each evaluation
+    std::vector<RowMatrixX4d> coupled;  // per thread, per source slot: the g-part's Σc, Σc·y
+    std::vector<double> log_scale;      // per thread: the common factor of its `coupled`
 };
 
-// Appends the terms of g_j (over the source) to `terms` and returns log g_j.
-double append_target_terms(const Side& target, const Side& source, const Parameters& p,
-                           Eigen::Index j, Neighbours& found, std::vector<TargetTerm>& terms) {
-    const std::size_t first = terms.size();
-    const auto index = static_cast<std::uint32_t>(j);
-    const detail::PointGrid& grid = *source.grid;
-    double sum = 0;
-    const double d_star =
-        visit_terms(target, source, p, j, found, [&](std::uint32_t slot, double d, double t) {
-            sum += t;
-            terms.push_back({source.active[grid.id(slot)], index, t / d});
-        });
-    const double scale = 1 / sum;
-    for (std::size_t k = first; k < terms.size(); ++k) {
-        terms[k].share_over_d *= scale;
-    }
-    return std::log(sum) - p.alpha * std::log(d_star);
-}
-
-// The target side: g_j over the source, with its terms kept (per thread, up to the budget)
-// because they scatter into the source rows only once S is known; the points beyond the
-// budget are listed for a second neighbour query.
+// The target side: g_j over the source, and the g-part of the coupling, which needs all of S
+// (c_ij = S^{1/(2α)−1} a_i b_j d_ij^{−α−1} g_j^{−2} for that part) only through the common
+// factor S^{1/(2α)−1}. Each query therefore scatters the rest, b_j/g_j · share_ji/d_ij, into
+// its thread's rows of the source slots (the queries run in cell order, so these rows stay
+// in cache) and nothing per pair is kept. A thread's rows share one factor exp(log_scale),
+// set by its first query and raised when a later one would otherwise overflow.
 struct TargetSums {
     Eigen::VectorXd log_g;
     std::size_t pairs = 0;
@@ -393,31 +439,40 @@ TargetSums sum_target(const Side& target, const Side& source, const Parameters& 
     const Eigen::Index count = target.points.rows();
     TargetSums sums{Eigen::VectorXd::Constant(count, kMinusInfinity), 0};
     const auto threads = static_cast<std::size_t>(thread_count());
-    work.kept.resize(threads);
-    work.redone.resize(threads);
-    for (std::size_t t = 0; t < threads; ++t) {
-        work.kept[t].clear();
-        work.redone[t].clear();
-    }
-    std::atomic<std::size_t> kept_terms{0};
+    const auto source_slots = static_cast<Eigen::Index>(source.active.size());
+    work.coupled.resize(threads);
+    work.log_scale.assign(threads, kMinusInfinity);
     const std::size_t queries = target.active.size();  // in cell order, as in sum_source
     std::size_t pairs = 0;
 #pragma omp parallel reduction(+ : pairs) if (count > kParallelThreshold)
     {
+        const auto thread = static_cast<std::size_t>(thread_id());
+        RowMatrixX4d& coupled = work.coupled[thread];
+        coupled.setZero(source_slots, 4);
+        double& log_scale = work.log_scale[thread];
         Neighbours found;
-        auto& kept = work.kept[static_cast<std::size_t>(thread_id())];
-        auto& redone = work.redone[static_cast<std::size_t>(thread_id())];
+        std::vector<double> term_over_d;
 #pragma omp for schedule(static, 128)
         for (std::size_t slot = 0; slot < queries; ++slot) {
-            const std::uint32_t j =
-                target.active[target.grid->id(static_cast<std::uint32_t>(slot))];
-            const std::size_t first = kept.size();
-            sums.log_g[j] = append_target_terms(target, source, p, j, found, kept);
-            const std::size_t terms = kept.size() - first;
-            pairs += terms;
-            if (kept_terms.fetch_add(terms) + terms > p.stored_term_budget) {
-                kept.resize(first);
-                redone.push_back(static_cast<std::uint32_t>(j));
+            const std::uint32_t j = target.active[target.grid.id(static_cast<std::uint32_t>(slot))];
+            const KeptTerms terms = weigh_terms(target, source, p, j, found, term_over_d);
+            pairs += found.count;
+            sums.log_g[j] = terms.log_f;
+            // b_j/g_j · share_ji/d_ij = exp(log b_j − log g_j − log Σt) · t_i/d_ij.
+            const double log_factor = target.log_weight[j] - terms.log_f - std::log(terms.sum);
+            if (log_scale == kMinusInfinity) {
+                log_scale = log_factor;
+            } else if (log_factor - log_scale > 300) {
+                coupled *= std::exp(log_scale - log_factor);  // rare: far larger than before
+                log_scale = log_factor;
+            }
+            const double factor = std::exp(log_factor - log_scale);
+            const Eigen::RowVector3d y = target.points.row(j);
+            for (std::size_t k = 0; k < found.count; ++k) {
+                const double c = factor * term_over_d[k];
+                const auto row = static_cast<Eigen::Index>(found.slots[k]);
+                coupled(row, 0) += c;
+                coupled.row(row).tail<3>() += c * y;
             }
         }
     }
@@ -518,7 +573,7 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
     const Parameters p{
         options.alpha,
         rounded == options.alpha && rounded >= 1 && rounded <= 64 ? static_cast<int>(rounded) : 0,
-        options.epsilon * options.epsilon, options.truncation, options.stored_term_budget};
+        options.epsilon * options.epsilon, options.truncation, std::exp(600 / options.alpha)};
 
     const TargetSums g = sum_target(target, source, p, work);  // g_j over the source
     const SourceSums f = sum_source(source, target, p);        // f_i over the target
@@ -543,45 +598,27 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
     // coefficients are formed in the log domain: S^{1/(2α)−1} alone may overflow.
     const double base = (1 / (2 * p.alpha) - 1) * log_S;
     const Eigen::Index n = source.points.rows();
-    Eigen::VectorXd target_coefficient = Eigen::VectorXd::Zero(target.points.rows());
-    for (const std::uint32_t j : target.active) {
-        target_coefficient[j] = std::exp(base + target.log_weight[j] - g.log_g[j]);
+    const auto source_slots = static_cast<Eigen::Index>(source.active.size());
+    // Per source point, the f-part and then each thread's g-part times its common factor.
+    std::vector<double> thread_factor(work.coupled.size(), 0.0);
+    for (std::size_t thread = 0; thread < work.coupled.size(); ++thread) {
+        if (work.log_scale[thread] != kMinusInfinity &&
+            work.coupled[thread].rows() == source_slots) {
+            thread_factor[thread] = std::exp(base + work.log_scale[thread]);
+        }  // else a thread that ran no query
     }
     RowMatrixX4d accumulated = RowMatrixX4d::Zero(n, 4);  // Σc, Σc·y
-    for (const std::uint32_t i : source.active) {
-        accumulated.row(i) = std::exp(base + source.log_weight[i] - f.log_f[i]) * f.moments.row(i);
-    }
-    // The g-part scatters into source rows: each thread into its own copy.
-    std::vector<RowMatrixX4d> scattered(static_cast<std::size_t>(thread_count()));
-#pragma omp parallel if (n > kParallelThreshold)
-    {
-        const auto thread = static_cast<std::size_t>(thread_id());
-        auto& local = scattered[thread];
-        local = RowMatrixX4d::Zero(n, 4);
-        const auto scatter = [&](const std::vector<TargetTerm>& kept_terms) {
-            for (const TargetTerm& term : kept_terms) {
-                const double c = target_coefficient[term.target] * term.share_over_d;
-                local(term.source, 0) += c;
-                local.row(term.source).tail<3>() += c * target.points.row(term.target);
-            }
-        };
-        // Each thread scatters the terms it kept, then shares the points to query again.
-        scatter(work.kept[thread]);
-        Neighbours found;
-        std::vector<TargetTerm> again;
-        for (const auto& redone : work.redone) {
-#pragma omp for schedule(static, 128)
-            for (std::size_t k = 0; k < redone.size(); ++k) {
-                again.clear();
-                append_target_terms(target, source, p, redone[k], found, again);
-                scatter(again);
+#pragma omp parallel for schedule(static) if (source_slots > kParallelLoopThreshold)
+    for (Eigen::Index slot = 0; slot < source_slots; ++slot) {
+        const std::uint32_t i = source.active[source.grid.id(static_cast<std::uint32_t>(slot))];
+        Eigen::RowVector4d row =
+            std::exp(base + source.log_weight[i] - f.log_f[i]) * f.moments.row(i);
+        for (std::size_t thread = 0; thread < thread_factor.size(); ++thread) {
+            if (thread_factor[thread] > 0) {
+                row += thread_factor[thread] * work.coupled[thread].row(slot);
             }
         }
-    }
-    for (const auto& local : scattered) {
-        if (local.rows() == n) {  // threads that never ran leave theirs empty
-            accumulated += local;
-        }
+        accumulated.row(i) = row;
     }
     result.coupling = accumulated.col(0);
     result.coupled_target = accumulated.rightCols<3>();
@@ -629,19 +666,17 @@ PseudoHausdorffEvaluation PseudoHausdorffEnergy::evaluate(const TriangleMesh& me
                            std::to_string(mesh.V.rows()) + " vertices but " +
                            std::to_string(descriptors.rows()) + " descriptor rows");
     }
-    const Side source(mesh.V, lumped_masses(mesh, MassType::Barycentric), options_, descriptors);
-
-    if (source.active.empty()) {
-        throw InvalidInput("PseudoHausdorffEnergy::evaluate: mesh has zero area");
-    }
+    const Eigen::VectorXd masses = lumped_masses(mesh, MassType::Barycentric);
     // The buffers of the last evaluation are reused (sparing ~20 MB of page faults per call on
     // a 28K × 21K pair) unless another thread is evaluating.
     std::unique_lock<std::mutex> lock(impl_->workspace_mutex, std::try_to_lock);
-    if (lock.owns_lock()) {
-        return evaluate_sides(source, impl_->target, options_, impl_->workspace);
+    Workspace own;
+    Workspace& work = lock.owns_lock() ? impl_->workspace : own;
+    work.source.assign(mesh.V, masses, options_, descriptors);
+    if (work.source.active.empty()) {
+        throw InvalidInput("PseudoHausdorffEnergy::evaluate: mesh has zero area");
     }
-    Workspace work;
-    return evaluate_sides(source, impl_->target, options_, work);
+    return evaluate_sides(work.source, impl_->target, options_, work);
 }
 
 namespace {

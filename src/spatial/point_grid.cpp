@@ -3,10 +3,19 @@
 
 namespace genflow::detail {
 
-PointGrid::PointGrid(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weights,
-                     const Eigen::VectorXd& factors, double cell_size) {
+void PointGrid::rebuild(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weights,
+                        const Eigen::VectorXd& factors, double cell_size) {
     const auto count = static_cast<std::size_t>(points.rows());
+    x_.resize(count);
+    y_.resize(count);
+    z_.resize(count);
+    weight_.resize(count);
+    factor_.resize(count);
+    id_.resize(count);
     if (count == 0) {
+        cell_ = inverse_cell_ = 1;
+        origin_.setZero();
+        dims_ = {1, 1, 1};
         start_.assign(2, 0);
         prefix_weight_.assign(8, 0.0);
         return;
@@ -27,7 +36,8 @@ PointGrid::PointGrid(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weig
     }
 
     // Counting sort of the points by cell.
-    std::vector<std::uint32_t> cell_of(count);
+    std::vector<std::uint32_t>& cell_of = cell_of_;
+    cell_of.resize(count);
     start_.assign(static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2] + 1), 0);
     for (std::size_t i = 0; i < count; ++i) {
         std::array<std::int64_t, 3> c{};
@@ -43,15 +53,9 @@ PointGrid::PointGrid(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weig
     for (std::size_t c = 1; c < start_.size(); ++c) {
         start_[c] += start_[c - 1];
     }
-    x_.resize(count);
-    y_.resize(count);
-    z_.resize(count);
-    weight_.resize(count);
-    factor_.resize(count);
-    id_.resize(count);
-    std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
+    next_slot_.assign(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < count; ++i) {
-        const std::uint32_t slot = next[cell_of[i]]++;
+        const std::uint32_t slot = next_slot_[cell_of[i]]++;
         const auto row = static_cast<Eigen::Index>(i);
         x_[slot] = points(row, 0);
         y_[slot] = points(row, 1);
@@ -60,11 +64,10 @@ PointGrid::PointGrid(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weig
         factor_[slot] = factors[row];
         id_[slot] = static_cast<std::uint32_t>(i);
     }
-    build_prefix_weights(cell_of, weights);
+    build_prefix_weights(weights);
 }
 
-void PointGrid::build_prefix_weights(const std::vector<std::uint32_t>& cell_of,
-                                     const Eigen::VectorXd& weights) {
+void PointGrid::build_prefix_weights(const Eigen::VectorXd& weights) {
     const auto nx = static_cast<std::size_t>(dims_[0] + 1);
     const auto ny = static_cast<std::size_t>(dims_[1] + 1);
     const auto nz = static_cast<std::size_t>(dims_[2] + 1);
@@ -74,8 +77,8 @@ void PointGrid::build_prefix_weights(const std::vector<std::uint32_t>& cell_of,
     prefix_weight_.assign(nx * ny * nz, 0.0);
     const auto cells_x = static_cast<std::uint32_t>(dims_[0]);
     const auto cells_y = static_cast<std::uint32_t>(dims_[1]);
-    for (std::size_t i = 0; i < cell_of.size(); ++i) {
-        const std::uint32_t cell = cell_of[i];
+    for (std::size_t i = 0; i < cell_of_.size(); ++i) {
+        const std::uint32_t cell = cell_of_[i];
         prefix_weight_[index(cell % cells_x + 1, cell / cells_x % cells_y + 1,
                              cell / (cells_x * cells_y) + 1)] +=
             weights[static_cast<Eigen::Index>(i)];

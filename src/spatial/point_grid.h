@@ -39,7 +39,15 @@ public:
     /// `cell_size` (> 0); the cells are enlarged when the bounding box would need more than about
     /// 4·#P + 64 of them, so that memory stays linear.
     PointGrid(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weights,
-              const Eigen::VectorXd& factors, double cell_size);
+              const Eigen::VectorXd& factors, double cell_size) {
+        rebuild(points, weights, factors, cell_size);
+    }
+    /// An empty grid, for rebuild().
+    PointGrid() = default;
+
+    /// Grids new points as the constructor does, reusing this grid's memory.
+    void rebuild(const Eigen::MatrixX3d& points, const Eigen::VectorXd& weights,
+                 const Eigen::VectorXd& factors, double cell_size);
 
     [[nodiscard]] double cell_size() const { return cell_; }
     [[nodiscard]] bool empty() const { return id_.empty(); }
@@ -64,11 +72,13 @@ public:
         const double* y = y_.data();
         const double* z = z_.data();
         const double* factor = factor_.data();
-        // Two independent minima break the dependency chain of one running minimum.
-        double even = std::numeric_limits<double>::infinity();
-        double odd = even;
+        double smallest = std::numeric_limits<double>::infinity();
         constexpr double kEverywhere = std::numeric_limits<double>::infinity();
         for_each_run(query, k, kEverywhere, [&](std::uint32_t begin, std::uint32_t end) {
+            // Minima local to the run stay in registers (`smallest` lives in memory: the walk
+            // is not inlined), and two of them break the dependency chain of one.
+            double even = std::numeric_limits<double>::infinity();
+            double odd = even;
             std::uint32_t p = begin;
             for (; p + 1 < end; p += 2) {
                 const double d0 =
@@ -83,8 +93,9 @@ public:
                     square(x[p] - query[0]) + square(y[p] - query[1]) + square(z[p] - query[2]);
                 even = std::min(even, factor[p] * (d0 + offset));
             }
+            smallest = std::min({smallest, even, odd});
         });
-        return std::min(even, odd);
+        return smallest;
     }
 
     /// Replaces the contents of `found` by the points of the block (as above) with squared
@@ -150,8 +161,7 @@ public:
 private:
     static double square(double v) { return v * v; }
 
-    void build_prefix_weights(const std::vector<std::uint32_t>& cell_of,
-                              const Eigen::VectorXd& weights);
+    void build_prefix_weights(const Eigen::VectorXd& weights);
 
     // ⌊v⌋ of a cell coordinate, clamped to ±1e9 (far outside any grid); std::floor is a
     // library call on baseline x86-64 and sits in the innermost setup loop.
@@ -191,6 +201,19 @@ private:
         if (!block_cells(query, k, low, high)) {
             return;
         }
+        if (radius2 == std::numeric_limits<double>::infinity()) {  // the whole block
+            for (std::int64_t z = low[2]; z <= high[2]; ++z) {
+                for (std::int64_t y = low[1]; y <= high[1]; ++y) {
+                    const std::int64_t row = (z * dims_[1] + y) * dims_[0];
+                    const std::uint32_t begin = start_[static_cast<std::size_t>(row + low[0])];
+                    const std::uint32_t end = start_[static_cast<std::size_t>(row + high[0] + 1)];
+                    if (begin < end) {
+                        run(begin, end);
+                    }
+                }
+            }
+            return;
+        }
         // The cells along `axis` that a ball of radius `half` about the query reaches.
         const auto reach = [&](std::size_t axis, double half) {
             const double q = query[static_cast<Eigen::Index>(axis)] - origin_[axis];
@@ -204,21 +227,21 @@ private:
             const double gap = std::max({low_side - q, q - (low_side + cell_), 0.0});
             return gap * gap;
         };
-        // Only the rows the ball reaches are visited (a block has (2k+1)² rows, the ball about
-        // π/4 of them), each clipped to the ball's chord through it.
-        const auto [z_first, z_last] = reach(2, std::sqrt(radius2));
+        // Only the rows of cells the ball reaches are visited (a block has (2k+1)² rows, the
+        // ball about π/4 of them), each over the ball's extent along x: clipping every row to
+        // the ball's chord costs more than the few points it would skip.
+        const double radius = std::sqrt(radius2);
+        const auto [x_first, x_last] = reach(0, radius);
+        const auto [z_first, z_last] = reach(2, radius);
+        if (x_first > x_last) {
+            return;
+        }
         for (std::int64_t z = z_first; z <= z_last; ++z) {
-            const double left_z = radius2 - gap2(2, z);
-            const auto [y_first, y_last] = reach(1, std::sqrt(std::max(left_z, 0.0)));
+            const auto [y_first, y_last] = reach(1, std::sqrt(std::max(radius2 - gap2(2, z), 0.0)));
             for (std::int64_t y = y_first; y <= y_last; ++y) {
-                const double left = left_z - gap2(1, y);
-                const auto [first, last] = reach(0, std::sqrt(std::max(left, 0.0)));
-                if (first > last) {
-                    continue;
-                }
                 const std::int64_t row = (z * dims_[1] + y) * dims_[0];
-                const std::uint32_t begin = start_[static_cast<std::size_t>(row + first)];
-                const std::uint32_t end = start_[static_cast<std::size_t>(row + last + 1)];
+                const std::uint32_t begin = start_[static_cast<std::size_t>(row + x_first)];
+                const std::uint32_t end = start_[static_cast<std::size_t>(row + x_last + 1)];
                 if (begin < end) {
                     run(begin, end);
                 }
@@ -237,6 +260,10 @@ private:
     std::vector<std::uint32_t> id_;     // original row, in cell order
     // Σ weight over the cells [0, x) × [0, y) × [0, z), on a (dims + 1)³ table (x fastest).
     std::vector<double> prefix_weight_;
+    // Scratch of rebuild(), kept so that a grid rebuilt at every evaluation allocates nothing:
+    // each point's cell, and the next free slot of each cell.
+    std::vector<std::uint32_t> cell_of_;
+    std::vector<std::uint32_t> next_slot_;
 };
 
 }  // namespace genflow::detail

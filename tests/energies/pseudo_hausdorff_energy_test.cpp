@@ -78,13 +78,64 @@ TEST(PseudoHausdorff, TruncationStaysWithinItsBound) {
     }
 }
 
-TEST(PseudoHausdorff, RepeatsTheNeighbourQueriesBeyondTheStorageBudget) {
-    const Pair pair = small_pair();
-    const auto stored = evaluate(pair, {.alpha = 8, .epsilon = 0.02, .truncation = 1e-4});
-    const auto requeried =
-        evaluate(pair, {.alpha = 8, .epsilon = 0.02, .truncation = 1e-4, .stored_term_budget = 50});
-    EXPECT_EQ(requeried.value, stored.value);
-    EXPECT_LT(test::relative_error(requeried.differential, stored.differential), 1e-13);
+// The target points' parts of the coupling are summed with a common factor per thread, set by
+// the first query and raised when a later one is far larger: here the near copy of the target
+// comes first (cell order: low z) and the far copy's terms exceed its by ~e^1000 at α = 100.
+TEST(PseudoHausdorff, DifferentialHoldsWhenTheTargetTermsSpanAThousandOrdersOfMagnitude) {
+    const TriangleMesh X = test::noisy_icosphere(1, 0.2, 3);
+    const TriangleMesh near = test::noisy_icosphere(1, 0.15, 7);
+    Eigen::MatrixX3d Y(2 * near.V.rows(), 3);
+    Y << near.V, near.V.rowwise() + Eigen::RowVector3d(0, 0, 10);
+    const Eigen::VectorXd mx = lumped_masses(X, MassType::Barycentric);
+    Eigen::VectorXd my(Y.rows());
+    my << lumped_masses(near, MassType::Barycentric), lumped_masses(near, MassType::Barycentric);
+    for (const double truncation : {0.0, 1e-4}) {
+        const PseudoHausdorffOptions options{
+            .alpha = 100, .epsilon = 0.05, .truncation = truncation};
+        const auto value = [&](const TriangleMesh& m) {
+            return pseudo_hausdorff(m.V, mx, Y, my, options).value;
+        };
+        const VertexField analytic = pseudo_hausdorff(X.V, mx, Y, my, options).differential;
+        ASSERT_TRUE(analytic.allFinite());
+        const VertexField fd = test::finite_difference_gradient(value, X, 1e-6);
+        EXPECT_LT(test::relative_error(analytic, fd), 1e-6) << truncation;
+    }
+}
+
+// Above 2000 points a side's sums run on all threads: here one side is summed in parallel and
+// the other not, both ways round (an earlier version scattered only the first thread's terms of
+// the target sums into a small source). Central differences at 24 vertices spread over X.
+TEST(PseudoHausdorff, DifferentialHoldsWhenOnlyOneSideIsSummedInParallel) {
+    const TriangleMesh small = make_limb(3);     // 642 vertices
+    const TriangleMesh large = make_limb(4, 9);  // 2562 vertices
+    for (const auto& [X, Y] : {std::pair{&small, &large}, std::pair{&large, &small}}) {
+        const Eigen::VectorXd mx = lumped_masses(*X, MassType::Barycentric);
+        const Eigen::VectorXd my = lumped_masses(*Y, MassType::Barycentric);
+        const PseudoHausdorffOptions options{.alpha = 8, .epsilon = mean_edge_length(*Y)};
+        const VertexField analytic = pseudo_hausdorff(X->V, mx, Y->V, my, options).differential;
+        std::vector<Eigen::Index> sampled;
+        for (Eigen::Index i = 0; i < X->V.rows(); i += X->V.rows() / 24) {
+            sampled.push_back(i);
+        }
+        Eigen::MatrixX3d fd(static_cast<Eigen::Index>(sampled.size()), 3);
+        Eigen::MatrixX3d expected(fd.rows(), 3);
+        for (Eigen::Index k = 0; k < fd.rows(); ++k) {
+            const Eigen::Index i = sampled[static_cast<std::size_t>(k)];
+            expected.row(k) = analytic.row(i);
+            for (int c = 0; c < 3; ++c) {
+                constexpr double h = 1e-6;
+                Eigen::MatrixX3d plus = X->V;
+                Eigen::MatrixX3d minus = X->V;
+                plus(i, c) += h;
+                minus(i, c) -= h;
+                fd(k, c) = (pseudo_hausdorff(plus, mx, Y->V, my, options).value -
+                            pseudo_hausdorff(minus, mx, Y->V, my, options).value) /
+                           (2 * h);
+            }
+        }
+        EXPECT_LT(test::relative_error(expected, fd), 1e-6)
+            << X->V.rows() << " against " << Y->V.rows();
+    }
 }
 
 TEST(PseudoHausdorff, IsSymmetric) {

@@ -347,7 +347,9 @@ TEST(Match, EpsilonScheduleEndsOnTheTargetAndReportsTheLevelsOwnDistance) {
     const MatchResult scheduled = match(pair.template_mesh, pair.target, options);
     ASSERT_EQ(scheduled.levels.size(), 1U);
     EXPECT_DOUBLE_EQ(scheduled.levels[0].energy_start, plain.levels[0].energy_start);
-    EXPECT_LE(scheduled.levels[0].iterations, options.max_iterations);
+    // Each of the guided level's four flows (signatures, plain, eigenfunctions, plain) splits
+    // its max_iterations between the two ε.
+    EXPECT_LE(scheduled.levels[0].iterations, 4 * options.max_iterations);
     EXPECT_LT(scheduled.hausdorff_energy, 1.5 * plain.hausdorff_energy)
         << scheduled.hausdorff_energy << " " << plain.hausdorff_energy;
 }

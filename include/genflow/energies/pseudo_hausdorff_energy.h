@@ -32,11 +32,6 @@ struct PseudoHausdorffOptions {
     /// 0 evaluates the exact O(P·Q) sums.
     double truncation = 1e-4;
     HausdorffWeights weights = HausdorffWeights::Paper;
-    /// The terms of the g_j sums (over the moving mesh) are kept for the gradient pass up to
-    /// this many (16 bytes each: 160 MB by default); beyond, the gradient pass repeats those
-    /// neighbour queries instead. Far-apart shapes keep most pairs, so this bounds the memory.
-    /// (The f_i sums keep nothing: their gradient part is summed on the fly.)
-    std::size_t stored_term_budget = 10'000'000;
 };
 
 /// Per-point descriptors that make d_H compare the points in R^{3+k}, (x_i, φ_i) against

@@ -163,7 +163,7 @@ struct MatchOptions {
 struct MatchLevel {
     Eigen::Index template_vertices = 0;
     Eigen::Index target_vertices = 0;
-    int iterations = 0;
+    int iterations = 0;  ///< steps of all the level's flows (a guided coarsest level has four)
     FlowStatus status = FlowStatus::MaxSteps;
     double energy_start = 0;  ///< d_H at the start of the level's flow
     double energy_end = 0;
