@@ -6,7 +6,8 @@
 set -euo pipefail
 build_dir=${1:-build/release}
 shift || true
-binaries=("$build_dir/bench/genflow_bench" "$build_dir/bench/genflow_flow_bench" "$build_dir/bench/genflow_hausdorff_bench")
+binaries=("$build_dir/bench/genflow_bench" "$build_dir/bench/genflow_flow_bench" "$build_dir/bench/genflow_hausdorff_bench"
+  "$build_dir/bench/genflow_match_bench")
 for binary in "${binaries[@]}"; do
   if [[ ! -x "$binary" ]]; then
     echo "run_benchmarks.sh: $binary not found; build with: cmake --preset release && cmake --build --preset release" >&2

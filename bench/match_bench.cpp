@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+// Time of a whole match() with the default options (h1 prior, global rigid alignment, start
+// selection, guided coarsest flow, multiresolution): on the demo's generated pair (a limb bent
+// at two joints and moved rigidly, 2562 vertices each side), and, with $GENFLOW_DATA, on the
+// 28K-vertex TOSCA cat and the 13K-vertex MakeHuman body against their remeshed targets. Each
+// reports the mean correspondence error over the target's bounding-box diagonal, so that a
+// faster setting that matches worse shows in the same table.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Geometry>
+#include <cstdlib>
+#include <filesystem>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include "genflow/io/read_mesh.h"
+#include "genflow/matching/match.h"
+#include "genflow/mesh/primitives.h"
+#include "genflow/operators/mesh_size.h"
+
+namespace {
+
+struct MatchCase {
+    genflow::TriangleMesh template_mesh;
+    genflow::TriangleMesh target;
+    Eigen::MatrixX3d truth;  // where each template vertex should land
+};
+
+// The demo's pair: the target sampled elsewhere, bent at both joints and moved rigidly.
+MatchCase generated_limb() {
+    constexpr double kDegree = std::numbers::pi / 180;
+    const std::vector<genflow::Joint> pose{
+        {{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 40 * kDegree, 0.4},
+        {{-1.2, 0, 0}, {-1, 0, 0}, {0, 1, 0}, -30 * kDegree, 0.4}};
+    genflow::Similarity motion;
+    motion.rotation =
+        Eigen::AngleAxisd(50 * kDegree, Eigen::Vector3d(1, 1, 1).normalized()).toRotationMatrix();
+    motion.translation = Eigen::Vector3d(0.5, -1, 2);
+    MatchCase pair{genflow::make_limb(4), genflow::make_limb(4, 7), {}};
+    pair.target.V = motion.apply(genflow::bend_at_joints(pair.target.V, pose));
+    pair.truth = motion.apply(genflow::bend_at_joints(pair.template_mesh.V, pose));
+    return pair;
+}
+
+// A pair of $GENFLOW_DATA/pairs.json, by its file names; nothing without the data.
+std::optional<MatchCase> data_pair(const std::string& template_file,
+                                   const std::string& ground_truth_file,
+                                   const std::string& remeshed_file) {
+    const char* data = std::getenv("GENFLOW_DATA");
+    const std::filesystem::path root = data != nullptr ? data : "../shared/data";
+    if (!std::filesystem::exists(root / template_file)) {
+        return std::nullopt;
+    }
+    return MatchCase{genflow::read_mesh(root / template_file),
+                     genflow::read_mesh(root / remeshed_file),
+                     genflow::read_mesh(root / ground_truth_file).V};
+}
+
+void run(benchmark::State& state, const std::optional<MatchCase>& pair) {
+    if (!pair) {
+        state.SkipWithError("needs $GENFLOW_DATA");
+        return;
+    }
+    const double diagonal = genflow::bounding_box_diagonal(pair->target);
+    double error = 0;
+    for (auto _ : state) {
+        const genflow::MatchResult result =
+            genflow::match(pair->template_mesh, pair->target, genflow::MatchOptions{});
+        error = (result.deformed.V - pair->truth).rowwise().norm().mean() / diagonal;
+    }
+    state.counters["template_vertices"] = static_cast<double>(pair->template_mesh.V.rows());
+    state.counters["target_vertices"] = static_cast<double>(pair->target.V.rows());
+    state.counters["mean_error_percent"] = 100 * error;
+}
+
+void BM_MatchGeneratedLimb(benchmark::State& state) {
+    static const std::optional<MatchCase> pair = generated_limb();
+    run(state, pair);
+}
+
+void BM_MatchTOSCACat(benchmark::State& state) {
+    static const std::optional<MatchCase> pair =
+        data_pair("matching/tosca/cat0.ply", "matching/tosca/cat4.ply",
+                  "matching/remeshed/tosca_cat_0_4_target_remeshed.ply");
+    run(state, pair);
+}
+
+void BM_MatchMakeHumanBody(benchmark::State& state) {
+    static const std::optional<MatchCase> pair =
+        data_pair("rigs/makehuman_body/body_rest.ply", "rigs/makehuman_body/body_pose1.ply",
+                  "matching/remeshed/makehuman_body_rest_pose1_target_remeshed.ply");
+    run(state, pair);
+}
+
+}  // namespace
+
+BENCHMARK(BM_MatchGeneratedLimb)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_MatchTOSCACat)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_MatchMakeHumanBody)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+BENCHMARK_MAIN();
