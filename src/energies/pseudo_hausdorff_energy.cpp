@@ -667,8 +667,9 @@ PseudoHausdorffEvaluation PseudoHausdorffEnergy::evaluate(const TriangleMesh& me
                            std::to_string(descriptors.rows()) + " descriptor rows");
     }
     const Eigen::VectorXd masses = lumped_masses(mesh, MassType::Barycentric);
-    // The buffers of the last evaluation are reused (sparing ~20 MB of page faults per call on
-    // a 28K × 21K pair) unless another thread is evaluating.
+    // The buffers of the last evaluation (the moving side and its grid, the threads' rows) are
+    // reused unless another thread is evaluating: fresh ones cost ~1 ms of page faults on a
+    // 28K × 21K pair.
     std::unique_lock<std::mutex> lock(impl_->workspace_mutex, std::try_to_lock);
     Workspace own;
     Workspace& work = lock.owns_lock() ? impl_->workspace : own;
