@@ -2,7 +2,6 @@
 #include "genflow/energies/pseudo_hausdorff_energy.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -416,7 +415,8 @@ SourceSums sum_source(const Side& source, const Side& target, const Parameters& 
     return sums;
 }
 
-// Per-thread buffers of the target side, reused from one evaluation to the next.
+// Buffers reused from one evaluation to the next: the moving side, and the target side's
+// per-thread rows.
 struct Workspace {
     Side source;                        // the moving side, refilled by each evaluation
     std::vector<RowMatrixX4d> coupled;  // per thread, per source slot: the g-part's Σc, Σc·y

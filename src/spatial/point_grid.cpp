@@ -36,8 +36,7 @@ void PointGrid::rebuild(const Eigen::MatrixX3d& points, const Eigen::VectorXd& w
     }
 
     // Counting sort of the points by cell.
-    std::vector<std::uint32_t>& cell_of = cell_of_;
-    cell_of.resize(count);
+    cell_of_.resize(count);
     start_.assign(static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2] + 1), 0);
     for (std::size_t i = 0; i < count; ++i) {
         std::array<std::int64_t, 3> c{};
@@ -47,15 +46,15 @@ void PointGrid::rebuild(const Eigen::MatrixX3d& points, const Eigen::VectorXd& w
                                           inverse_cell_),
                 dims_[static_cast<std::size_t>(a)] - 1);
         }
-        cell_of[i] = static_cast<std::uint32_t>((c[2] * dims_[1] + c[1]) * dims_[0] + c[0]);
-        ++start_[cell_of[i] + 1];
+        cell_of_[i] = static_cast<std::uint32_t>((c[2] * dims_[1] + c[1]) * dims_[0] + c[0]);
+        ++start_[cell_of_[i] + 1];
     }
     for (std::size_t c = 1; c < start_.size(); ++c) {
         start_[c] += start_[c - 1];
     }
     next_slot_.assign(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < count; ++i) {
-        const std::uint32_t slot = next_slot_[cell_of[i]]++;
+        const std::uint32_t slot = next_slot_[cell_of_[i]]++;
         const auto row = static_cast<Eigen::Index>(i);
         x_[slot] = points(row, 0);
         y_[slot] = points(row, 1);
