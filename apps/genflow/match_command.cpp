@@ -193,6 +193,13 @@ void register_match_command(CLI::App& app) {
                      "in a second guided coarsest flow that tells left from right (0 = off)")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
+    command
+        ->add_option("--stretch-weight", options->match.stretch_weight,
+                     "Weight of the template's edge stretching (relative to its rest lengths, "
+                     "times the diagonal) added to d_H in the last guided coarsest flow; it "
+                     "keeps the template from sliding along the target (0 = off)")
+        ->check(CLI::Range(0.0, 100.0))
+        ->capture_default_str();
     command->add_flag("--implicit", options->match.implicit,
                       "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
     command->add_flag("--no-align", options->no_align,

@@ -7,7 +7,9 @@
 #include <memory>
 #include <numeric>
 
+#include "genflow/energies/edge_length_energy.h"
 #include "genflow/energies/pseudo_hausdorff_energy.h"
+#include "genflow/energies/weighted_sum_energy.h"
 #include "genflow/exceptions.h"
 #include "genflow/flows/gradient_descent.h"
 #include "genflow/matching/multiresolution.h"
@@ -72,12 +74,13 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         options.selection_iterations < 0 || !detail::finite_at_least(options.coarse_epsilon, 1) ||
         !detail::finite_at_least(options.selection_tolerance, 0) ||
         !detail::finite_at_least(options.signature_guidance, 0) ||
-        !detail::finite_at_least(options.eigenfunction_guidance, 0)) {
+        !detail::finite_at_least(options.eigenfunction_guidance, 0) ||
+        !detail::finite_at_least(options.stretch_weight, 0)) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
             "coarse_vertices >= 100, coarse_epsilon >= 1, selection_tolerance >= 0, "
-            "signature_guidance >= 0 and eigenfunction_guidance >= 0");
+            "signature_guidance >= 0, eigenfunction_guidance >= 0 and stretch_weight >= 0");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -262,50 +265,63 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     // The flow of one level from `moved` (the template level's vertices, already placed).
     // `placement`: the similarity that took the template level to `moved`'s rest frame.
     // `descriptors`: the d_H augmented with them (signature_guidance), else the plain one.
-    const auto flow_level = [&](int l, const TriangleMesh& moved, int iterations,
-                                const Similarity& placement, MatchPrior prior,
-                                const PointDescriptors& descriptors = {}) {
-        const Level& level = pyramid[static_cast<std::size_t>(l)];
-        const PseudoHausdorffEnergy energy = distance_to_target(level, 1, descriptors);
-        std::optional<PartModel> parts;
-        if (options.parts) {  // this level's weights, joints moved with the template
-            parts = restrict_to(*options.parts, level.original_vertex);
-            for (Part& part : parts->parts) {
-                part.joint_centre = placement.apply(part.joint_centre.transpose()).transpose();
+    // `stretch_weight` > 0 adds that times the diagonal times the level's EdgeLengthEnergy.
+    const auto flow_level =
+        [&](int l, const TriangleMesh& moved, int iterations, const Similarity& placement,
+            MatchPrior prior, const PointDescriptors& descriptors = {}, double stretch_weight = 0) {
+            const Level& level = pyramid[static_cast<std::size_t>(l)];
+            std::optional<PartModel> parts;
+            if (options.parts) {  // this level's weights, joints moved with the template
+                parts = restrict_to(*options.parts, level.original_vertex);
+                for (Part& part : parts->parts) {
+                    part.joint_centre = placement.apply(part.joint_centre.transpose()).transpose();
+                }
             }
-        }
-        TriangleMesh rest = level.template_mesh;  // where the joint centres are bound
-        rest.V = placement.apply(rest.V);
-        const std::unique_ptr<Metric> metric =
-            make_metric(options, prior, rest, parts ? &*parts : nullptr);
-        DescentOptions descent{.max_displacement = options.max_step * diagonal,
-                               .max_steps = iterations,
-                               .stagnation_tolerance = options.stagnation_tolerance,
-                               .stagnation_window = 20,
-                               .implicit = options.implicit};
-        if (options.progress) {
-            descent.progress = [&, l](const FlowProgress& p) {
-                const bool go_on =
-                    options.progress({l, count, p.step, p.max_steps, p.energy, p.mesh});
-                cancelled = cancelled || !go_on;
-                return go_on;
+            TriangleMesh rest = level.template_mesh;  // where the joint centres are bound
+            rest.V = placement.apply(rest.V);
+            std::shared_ptr<const EdgeLengthEnergy> stretch;
+            if (stretch_weight > 0) {
+                stretch = std::make_shared<EdgeLengthEnergy>(rest);
+            }
+            const auto energy_with_epsilon = [&](double epsilon_factor) {
+                std::vector<WeightedSumEnergy::Term> terms{
+                    {1.0, std::make_shared<const PseudoHausdorffEnergy>(
+                              distance_to_target(level, epsilon_factor, descriptors))}};
+                if (stretch) {
+                    terms.push_back({stretch_weight * diagonal, stretch});
+                }
+                return WeightedSumEnergy(std::move(terms));
             };
-        }
-        if (l == count - 1 && options.coarse_epsilon != 1) {
-            // First half with the smoother d_H of a larger ε, then the level's own ε; the
-            // energies reported are all of the latter.
-            descent.max_steps = iterations / 2;
-            const FlowResult smooth = gradient_descent(
-                moved, distance_to_target(level, options.coarse_epsilon, descriptors), *metric,
-                descent);
-            descent.max_steps = iterations - smooth.steps;
-            FlowResult flow = gradient_descent(smooth.mesh, energy, *metric, descent);
-            flow.steps += smooth.steps;
-            flow.energy.insert(flow.energy.begin(), energy.value(moved));
-            return flow;
-        }
-        return gradient_descent(moved, energy, *metric, descent);
-    };
+            const WeightedSumEnergy energy = energy_with_epsilon(1);
+            const std::unique_ptr<Metric> metric =
+                make_metric(options, prior, rest, parts ? &*parts : nullptr);
+            DescentOptions descent{.max_displacement = options.max_step * diagonal,
+                                   .max_steps = iterations,
+                                   .stagnation_tolerance = options.stagnation_tolerance,
+                                   .stagnation_window = 20,
+                                   .implicit = options.implicit};
+            if (options.progress) {
+                descent.progress = [&, l](const FlowProgress& p) {
+                    const bool go_on =
+                        options.progress({l, count, p.step, p.max_steps, p.energy, p.mesh});
+                    cancelled = cancelled || !go_on;
+                    return go_on;
+                };
+            }
+            if (l == count - 1 && options.coarse_epsilon != 1) {
+                // First half with the smoother d_H of a larger ε, then the level's own ε; the
+                // energies reported are all of the latter.
+                descent.max_steps = iterations / 2;
+                const FlowResult smooth = gradient_descent(
+                    moved, energy_with_epsilon(options.coarse_epsilon), *metric, descent);
+                descent.max_steps = iterations - smooth.steps;
+                FlowResult flow = gradient_descent(smooth.mesh, energy, *metric, descent);
+                flow.steps += smooth.steps;
+                flow.energy.insert(flow.energy.begin(), energy.value(moved));
+                return flow;
+            }
+            return gradient_descent(moved, energy, *metric, descent);
+        };
     const auto report = [](const TriangleMesh& mesh, const Level& level, const FlowResult& flow,
                            double seconds) {
         return MatchLevel{mesh.V.rows(),       level.target.V.rows(), flow.steps, flow.status,
@@ -350,28 +366,36 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         // this first match implies.
         const TriangleMesh start_mesh = placed(starts[chosen]);
         int steps = 0;
-        const auto guided_then_plain = [&](const PointDescriptors& descriptors) {
-            FlowResult guided_flow = flow_level(count - 1, start_mesh, options.max_iterations,
-                                                starts[chosen], options.prior, descriptors);
+        const auto guided_then_plain = [&](const PointDescriptors& descriptors,
+                                           double stretch_weight) {
+            FlowResult guided_flow =
+                flow_level(count - 1, start_mesh, options.max_iterations, starts[chosen],
+                           options.prior, descriptors, stretch_weight);
             steps += guided_flow.steps;
             if (cancelled) {
                 return guided_flow;
             }
             FlowResult plain = flow_level(count - 1, guided_flow.mesh, options.max_iterations,
-                                          starts[chosen], options.prior);
+                                          starts[chosen], options.prior, {}, stretch_weight);
             steps += plain.steps;
             return plain;
         };
-        best = guided_then_plain(signature_descriptors);
-        if (!cancelled && options.eigenfunction_guidance > 0) {
+        // The stretching energy joins the last round only: the first one serves to estimate the
+        // functional map, which it made worse (MatchOptions::stretch_weight).
+        const bool eigenfunctions = options.eigenfunction_guidance > 0;
+        best =
+            guided_then_plain(signature_descriptors, eigenfunctions ? 0 : options.stretch_weight);
+        if (!cancelled && eigenfunctions) {
             best = guided_then_plain(spectral->eigenfunction_descriptors(
-                best.mesh.V, coarsest.template_mesh.V, coarsest.target.V,
-                options.eigenfunction_guidance * diagonal));
+                                         best.mesh.V, coarsest.template_mesh.V, coarsest.target.V,
+                                         options.eigenfunction_guidance * diagonal),
+                                     options.stretch_weight);
         }
         best.steps = steps;
         // The level reports the plain d_H, from the rigid start on.
-        best.energy.insert(best.energy.begin(),
-                           distance_to_target(coarsest, 1, {}).value(start_mesh));
+        const PseudoHausdorffEnergy plain_distance = distance_to_target(coarsest, 1, {});
+        best.energy.insert(best.energy.begin(), plain_distance.value(start_mesh));
+        best.energy.back() = plain_distance.value(best.mesh);
     } else if (!several_starts || options.prior != MatchPrior::H1) {
         best = flow_level(count - 1, placed(starts[chosen]), options.max_iterations, starts[chosen],
                           options.prior);

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
 #include <memory>
 
+#include "genflow/energies/edge_length_energy.h"
 #include "genflow/energies/enclosed_volume_energy.h"
 #include "genflow/energies/surface_area_energy.h"
 #include "genflow/energies/weighted_sum_energy.h"
@@ -53,6 +56,78 @@ TEST(Energies, WeightedSumLinearizesOnlyWithPositiveLinearizableTerms) {
     EXPECT_FALSE(EnclosedVolumeEnergy{}.linearize(mesh));
     EXPECT_THROW(WeightedSumEnergy({{NAN, area}}), InvalidInput);
     EXPECT_THROW(WeightedSumEnergy({{1.0, nullptr}}), InvalidInput);
+}
+
+TEST(EdgeLengthEnergy, VanishesUnderRigidMotionAndMeasuresUniformScaling) {
+    const TriangleMesh rest = test::noisy_icosphere(2, 0.2);
+    const EdgeLengthEnergy energy(rest);
+    EXPECT_EQ(energy.value(rest), 0);
+    EXPECT_LT(energy.differential(rest).cwiseAbs().maxCoeff(), 1e-15);
+
+    TriangleMesh moved = rest;
+    const Eigen::Matrix3d rotation =
+        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -1).normalized()).toRotationMatrix();
+    moved.V = (rest.V * rotation.transpose()).rowwise() + Eigen::RowVector3d(3, -1, 2);
+    EXPECT_LT(energy.value(moved), 1e-28);
+
+    // Every edge s times longer: Σ (s − 1)² ℓ² / Σ ℓ² = (s − 1)².
+    for (const double s : {0.5, 1.1, 3.0}) {
+        moved.V = s * rest.V;
+        EXPECT_NEAR(energy.value(moved), (s - 1) * (s - 1), 1e-12);
+    }
+}
+
+TEST(EdgeLengthEnergy, IsFreeToBendAlongAnEdge) {
+    // Two triangles folded about their shared edge keep every length.
+    TriangleMesh hinge;
+    hinge.V.resize(4, 3);
+    hinge.V << 0, 0, 0, 1, 0, 0, 0.5, 1, 0, 0.5, -1, 0;
+    hinge.F.resize(2, 3);
+    hinge.F << 0, 1, 2, 1, 0, 3;
+    const EdgeLengthEnergy energy(hinge);
+    TriangleMesh folded = hinge;
+    folded.V.row(3) << 0.5, -std::cos(1.0), std::sin(1.0);
+    EXPECT_LT(energy.value(folded), 1e-30);
+    folded.V.row(3) << 0.5, -1.5, 0;  // two edges stretched to √(0.25 + 2.25)
+    const double stretch = std::sqrt(2.5) - std::sqrt(1.25);
+    EXPECT_NEAR(energy.value(folded), 2 * stretch * stretch / (1 + 4 * 1.25), 1e-14);
+}
+
+TEST(EdgeLengthEnergy, DifferentialAndLinearizationAgreeWithTheValue) {
+    const TriangleMesh rest = test::noisy_torus(12, 6, 0.1);
+    const EdgeLengthEnergy energy(rest);
+    const TriangleMesh deformed = test::noisy_torus(12, 6, 0.3, 7);
+    expect_differential_matches_finite_differences(energy, deformed);
+
+    const auto linearization = energy.linearize(deformed);
+    ASSERT_TRUE(linearization);
+    EXPECT_LT(test::relative_error(linearization->A * deformed.V + linearization->B,
+                                   energy.differential(deformed)),
+              1e-12);
+    const Eigen::SparseMatrix<double> A = linearization->A;
+    EXPECT_EQ((Eigen::MatrixXd(A) - Eigen::MatrixXd(A).transpose()).cwiseAbs().maxCoeff(), 0);
+    // A is a graph Laplacian: rows sum to zero, and it is PSD.
+    EXPECT_LT((A * Eigen::VectorXd::Ones(A.cols())).cwiseAbs().maxCoeff(), 1e-12);
+    const Eigen::VectorXd v = Eigen::VectorXd::Random(A.cols());
+    EXPECT_GT(v.dot(A * v), 0);
+}
+
+TEST(EdgeLengthEnergy, RefusesMismatchedAndDegenerateMeshes) {
+    const TriangleMesh rest = test::noisy_icosphere(1);
+    const EdgeLengthEnergy energy(rest);
+    const TriangleMesh other = test::noisy_icosphere(2);
+    EXPECT_THROW((void)energy.value(other), InvalidInput);
+    EXPECT_THROW((void)energy.differential(other), InvalidInput);
+    EXPECT_THROW((void)energy.linearize(other), InvalidInput);
+    TriangleMesh collapsed = rest;
+    collapsed.V.setZero();
+    EXPECT_THROW(EdgeLengthEnergy{collapsed}, InvalidInput);
+    TriangleMesh broken = rest;
+    broken.V(0, 0) = NAN;
+    EXPECT_THROW(EdgeLengthEnergy{broken}, InvalidInput);
+    broken = rest;
+    broken.F(0, 0) = static_cast<int>(rest.V.rows());
+    EXPECT_THROW(EdgeLengthEnergy{broken}, InvalidInput);
 }
 
 }  // namespace

@@ -21,7 +21,8 @@ namespace {
 // The signatures' guidance of the coarsest flow then keeps limbs off the wrong surfaces:
 // cat 5.4 %, FAUST 1.7 %, centaur 2.6 % (average 3.2 %, 4.5 % without it), and the
 // eigenfunctions' guidance puts the cat's left paw on the left: cat 2.5 %, FAUST 1.2 %,
-// centaur 1.4 % (average 1.7 %).
+// centaur 1.4 % (average 1.7 %), and the stretching energy in their flows keeps the coarsest
+// template from sliding along the target: cat 2.4 %, FAUST 0.9 %, centaur 1.1 % (average 1.5 %).
 TEST(RealPairs, SmallPairsMatchWithoutAFlippedStart) {
     const auto data = test::data_directory();
     if (!data) {
@@ -48,7 +49,7 @@ TEST(RealPairs, SmallPairsMatchWithoutAFlippedStart) {
         ++matched;
     }
     ASSERT_GE(matched, 3);
-    EXPECT_LT(error_sum / matched, 0.025);
+    EXPECT_LT(error_sum / matched, 0.02);
 }
 
 }  // namespace

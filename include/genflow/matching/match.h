@@ -142,6 +142,25 @@ struct MatchOptions {
     /// 5.1 → 3.1 %, centaur 2.4 → 1.2 %, makehuman body 1.9 → 1.1 %, wolf 1.3 → 0.9 % (its paw
     /// back on its own side), at 0.5–2 s more (docs/eval/results.md).
     double eigenfunction_guidance = 0.1;
+    /// The last guided round (the eigenfunctions', else the signatures') flows on d_H plus
+    /// stretch_weight × the target's diagonal × the EdgeLengthEnergy of the coarsest template
+    /// level at its rigid start: d_H cannot see where along the target's surface a point lands,
+    /// and without it the coarsest template slid tangentially until its edges were stretched or
+    /// squeezed by 40–50 % on average (TOSCA cat, MakeHuman hand; 8–14 % between the true
+    /// poses), which is most of the remaining correspondence error: with the true positions
+    /// on the coarsest level the finer levels end 0.2–0.5 % from the truth. 0 turns it off.
+    /// Measured on the 12 pairs of $GENFLOW_DATA (h1, mean error, 0 → 0.1): TOSCA cat 3.63 →
+    /// 2.67 %, wolf 0.92 → 0.55, makehuman body 1.14 → 0.72, horse 1.43 → 1.00, hand 3.08 →
+    /// 2.56, centaur 1.17 → 0.82, FAUST 1.64 → 1.38, arm 7.22 → 6.72, small cat, FAUST and
+    /// centaur 2.55 → 2.41, 1.22 → 0.88, 1.38 → 1.07; michael 3.62 → 3.82; at the same time.
+    /// Weights of 0.03–0.2 gave about the same; 0.4 turned the cat's head (4.4 %). In the
+    /// first round as well, it spoilt the functional map that round serves to estimate (cat
+    /// 9.5 % at 0.1); in the guided flow only, the plain flow after it slid again (wolf 0.83 %,
+    /// small FAUST 1.22 %). The price: the coarsest template fits the surface less closely
+    /// where the poses are not isometric at its scale, and 15 fine steps leave the cat's
+    /// symmetric Hausdorff distance at 4.8 % of the diagonal instead of 2.2 % (mean surface
+    /// distance 0.2 → 0.5 %; the other pairs within ±0.4 %).
+    double stretch_weight = 0.1;
     RigidAlignmentOptions alignment;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
