@@ -303,8 +303,6 @@ TEST(Match, ArticulatedPriorFollowsABendTheRigidPriorCannot) {
     EXPECT_LT(pair.error(articulated), 0.5 * pair.error(rigid));
 }
 
-// Without parts, the quasi-isometric prior follows the bend while keeping edge lengths better
-// than L2 (which slides) and bending where the quasi-rigid prior cannot.
 // Mean |ℓ'/ℓ − 1| over the template's edges.
 double mean_edge_strain(const TriangleMesh& template_mesh, const MatchResult& result) {
     const Eigen::MatrixX2i edges = unique_edges(template_mesh.F);
@@ -319,6 +317,8 @@ double mean_edge_strain(const TriangleMesh& template_mesh, const MatchResult& re
     return sum / static_cast<double>(edges.rows());
 }
 
+// Without parts, the quasi-isometric prior follows the bend while keeping edge lengths better
+// than L2 (which slides) and bending where the quasi-rigid prior cannot.
 TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
     const BentLimbPair pair;
     const TriangleMesh& template_mesh = pair.template_mesh;
@@ -515,12 +515,12 @@ TEST(Match, StretchingEnergyKeepsEdgeLengthsAndTheMatch) {
     const MatchResult free = match(pair.template_mesh, pair.target, options);
     options.stretch_weight = 0.1;
     const MatchResult stretched = match(pair.template_mesh, pair.target, options);
-    std::printf("strain %.4f -> %.4f, error %.4f -> %.4f, d_H %.4g -> %.4g\n",
-                mean_edge_strain(pair.template_mesh, free),
-                mean_edge_strain(pair.template_mesh, stretched), pair.error(free),
-                pair.error(stretched), free.hausdorff_energy, stretched.hausdorff_energy);
-    EXPECT_LT(mean_edge_strain(pair.template_mesh, stretched),
-              0.7 * mean_edge_strain(pair.template_mesh, free));
+    const double free_strain = mean_edge_strain(pair.template_mesh, free);
+    const double stretched_strain = mean_edge_strain(pair.template_mesh, stretched);
+    std::printf("strain %.4f -> %.4f, error %.4f -> %.4f, d_H %.4g -> %.4g\n", free_strain,
+                stretched_strain, pair.error(free), pair.error(stretched), free.hausdorff_energy,
+                stretched.hausdorff_energy);
+    EXPECT_LT(stretched_strain, 0.7 * free_strain);  // measured 0.065 against 0.185
     EXPECT_LT(pair.error(stretched), pair.error(free));
     EXPECT_LT(stretched.hausdorff_energy, 1.2 * free.hausdorff_energy);
     options.stretch_weight = -1;
