@@ -200,6 +200,12 @@ void register_match_command(CLI::App& app) {
                      "keeps the template from sliding along the target (0 = off)")
         ->check(CLI::Range(0.0, 100.0))
         ->capture_default_str();
+    command
+        ->add_option("--stiffness-candidates", options->match.stiffness_candidates,
+                     "Run that last flow at the stretch weight times 1, 4, 16, ... and keep the "
+                     "result that agrees best with the target intrinsically (1 = the weight only)")
+        ->check(CLI::Range(1, 8))
+        ->capture_default_str();
     command->add_flag("--implicit", options->match.implicit,
                       "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
     command->add_flag("--no-align", options->no_align,

@@ -59,6 +59,7 @@ nlohmann::json run_match_job(MatchJob job) {
           {alignment(2, 0), alignment(2, 1), alignment(2, 2), alignment(2, 3)},
           {0, 0, 0, 1}}},
         {"pseudo_hausdorff", result.hausdorff_energy},
+        {"stretch_weight", result.stretch_weight},
         {"hausdorff", distances.hausdorff},
         {"mean_distance", distances.mean},
         {"target_bbox_diagonal", diagonal},

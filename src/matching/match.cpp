@@ -75,12 +75,13 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         !detail::finite_at_least(options.selection_tolerance, 0) ||
         !detail::finite_at_least(options.signature_guidance, 0) ||
         !detail::finite_at_least(options.eigenfunction_guidance, 0) ||
-        !detail::finite_at_least(options.stretch_weight, 0)) {
+        !detail::finite_at_least(options.stretch_weight, 0) || options.stiffness_candidates < 1) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
             "coarse_vertices >= 100, coarse_epsilon >= 1, selection_tolerance >= 0, "
-            "signature_guidance >= 0, eigenfunction_guidance >= 0 and stretch_weight >= 0");
+            "signature_guidance >= 0, eigenfunction_guidance >= 0, stretch_weight >= 0 and "
+            "stiffness_candidates >= 1");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -174,9 +175,14 @@ Embedding moved_embedding(const Embedding& embedding, const Similarity& similari
     return moved;
 }
 
+// How far a placement of the coarsest template disagrees with the target intrinsically: the
+// median signature discrepancy, divided by the map's consistency with the eigenbases.
+double disagreement(const detail::SpectralDescriptors& spectral, const Eigen::MatrixX3d& deformed) {
+    return spectral.discrepancy(deformed) / spectral.map_consistency(deformed);
+}
+
 // Of the flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
-// one whose correspondence agrees best with the target intrinsically (MatchOptions::align): the
-// lowest median signature discrepancy, divided by the map's consistency with the eigenbases.
+// one whose correspondence agrees best with the target intrinsically (MatchOptions::align).
 std::size_t choose_start(const std::vector<FlowResult>& flows,
                          const detail::SpectralDescriptors& spectral, double tolerance) {
     if (flows.size() < 2) {
@@ -190,10 +196,9 @@ std::size_t choose_start(const std::vector<FlowResult>& flows,
     double best_agreement = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < flows.size(); ++k) {
         if (flows[k].energy.back() <= (1 + tolerance) * lowest) {
-            const double disagreement =
-                spectral.discrepancy(flows[k].mesh.V) / spectral.map_consistency(flows[k].mesh.V);
-            if (disagreement < best_agreement) {
-                best_agreement = disagreement;
+            const double value = disagreement(spectral, flows[k].mesh.V);
+            if (value < best_agreement) {
+                best_agreement = value;
                 chosen = k;
             }
         }
@@ -380,16 +385,46 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             steps += plain.steps;
             return plain;
         };
+        // The last round, at each stiffness of MatchOptions::stiffness_candidates: the stiffer
+        // ones settle at stretch_weight after their plain flow; the result that disagrees least
+        // with the target intrinsically is kept.
+        const auto last_round = [&](const PointDescriptors& descriptors) {
+            const int candidates = options.stretch_weight > 0 ? options.stiffness_candidates : 1;
+            FlowResult kept;
+            double lowest = std::numeric_limits<double>::infinity();
+            double weight = options.stretch_weight;
+            for (int k = 0; k < candidates && !cancelled; ++k, weight *= 4) {
+                FlowResult flow = guided_then_plain(descriptors, weight);
+                if (k > 0) {
+                    if (cancelled) {
+                        break;
+                    }
+                    FlowResult settled =
+                        flow_level(count - 1, flow.mesh, options.max_iterations, starts[chosen],
+                                   options.prior, {}, options.stretch_weight);
+                    steps += settled.steps;
+                    flow = std::move(settled);
+                }
+                const double value = candidates > 1 ? disagreement(*spectral, flow.mesh.V) : 0;
+                if (k == 0 || value < lowest) {
+                    lowest = value;
+                    kept = std::move(flow);
+                    result.stretch_weight = weight;
+                }
+            }
+            return kept;
+        };
         // The stretching energy joins the last round only: the first one serves to estimate the
         // functional map, which it made worse (MatchOptions::stretch_weight).
-        const bool eigenfunctions = options.eigenfunction_guidance > 0;
-        best =
-            guided_then_plain(signature_descriptors, eigenfunctions ? 0 : options.stretch_weight);
-        if (!cancelled && eigenfunctions) {
-            best = guided_then_plain(spectral->eigenfunction_descriptors(
-                                         best.mesh.V, coarsest.template_mesh.V, coarsest.target.V,
-                                         options.eigenfunction_guidance * diagonal),
-                                     options.stretch_weight);
+        if (options.eigenfunction_guidance > 0) {
+            best = guided_then_plain(signature_descriptors, 0);
+            if (!cancelled) {
+                best = last_round(spectral->eigenfunction_descriptors(
+                    best.mesh.V, coarsest.template_mesh.V, coarsest.target.V,
+                    options.eigenfunction_guidance * diagonal));
+            }
+        } else {
+            best = last_round(signature_descriptors);
         }
         best.steps = steps;
         // The level reports the plain d_H, from the rigid start on.

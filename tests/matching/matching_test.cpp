@@ -294,6 +294,7 @@ TEST(Match, ArticulatedPriorFollowsABendTheRigidPriorCannot) {
     MatchOptions options;
     options.prior = MatchPrior::Articulated;
     options.align = false;
+    options.stiffness_candidates = 1;  // Match.StiffnessCandidatesKeepOneAndReportIt
     options.parts = two_part_arm(pair.template_mesh);
     const MatchResult articulated = match(pair.template_mesh, pair.target, options);
     options.prior = MatchPrior::Rigid;
@@ -345,14 +346,17 @@ TEST(Match, EpsilonScheduleEndsOnTheTargetAndReportsTheLevelsOwnDistance) {
     const BentLimbPair pair;
     MatchOptions options;
     options.align = false;
+    options.stiffness_candidates = 1;  // fewer flows to wait for; the schedule is the same
     const MatchResult plain = match(pair.template_mesh, pair.target, options);
     options.coarse_epsilon = 3;
     const MatchResult scheduled = match(pair.template_mesh, pair.target, options);
     ASSERT_EQ(scheduled.levels.size(), 1U);
     EXPECT_DOUBLE_EQ(scheduled.levels[0].energy_start, plain.levels[0].energy_start);
-    // Each of the guided level's four flows (signatures, plain, eigenfunctions, plain) splits
-    // its max_iterations between the two ε.
-    EXPECT_LE(scheduled.levels[0].iterations, 4 * options.max_iterations);
+    // Each of the guided level's flows splits its max_iterations between the two ε: signatures
+    // and plain, then per stiffness candidate eigenfunctions and plain, and for the stiffer ones
+    // the flow that settles them.
+    const int flows = 2 + 2 + 3 * (options.stiffness_candidates - 1);
+    EXPECT_LE(scheduled.levels[0].iterations, flows * options.max_iterations);
     EXPECT_LT(scheduled.hausdorff_energy, 1.5 * plain.hausdorff_energy)
         << scheduled.hausdorff_energy << " " << plain.hausdorff_energy;
 }
@@ -486,6 +490,7 @@ TEST(Match, GuidanceReportsThePlainDistanceAndMatchesTheLimb) {
     const BentLimbPair pair;
     MatchOptions options;
     options.align = false;
+    options.stiffness_candidates = 1;  // Match.StiffnessCandidatesKeepOneAndReportIt
     options.signature_guidance = 0;
     const MatchResult plain = match(pair.template_mesh, pair.target, options);
     options.signature_guidance = 0.1;
@@ -511,6 +516,7 @@ TEST(Match, StretchingEnergyKeepsEdgeLengthsAndTheMatch) {
     const BentLimbPair pair;
     MatchOptions options;
     options.align = false;
+    options.stiffness_candidates = 1;
     options.stretch_weight = 0;
     const MatchResult free = match(pair.template_mesh, pair.target, options);
     options.stretch_weight = 0.1;
@@ -523,7 +529,33 @@ TEST(Match, StretchingEnergyKeepsEdgeLengthsAndTheMatch) {
     EXPECT_LT(stretched_strain, 0.7 * free_strain);  // measured 0.065 against 0.185
     EXPECT_LT(pair.error(stretched), pair.error(free));
     EXPECT_LT(stretched.hausdorff_energy, 1.2 * free.hausdorff_energy);
+    EXPECT_EQ(free.stretch_weight, 0);
+    EXPECT_DOUBLE_EQ(stretched.stretch_weight, 0.1);
     options.stretch_weight = -1;
+    EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
+}
+
+// The last guided round at the stretch weight and at stiffer ones keeps one of them, as good a
+// match as the stretch weight's alone on the bent limb, and says which.
+TEST(Match, StiffnessCandidatesKeepOneAndReportIt) {
+    const BentLimbPair pair;
+    MatchOptions options;
+    options.align = false;
+    options.stiffness_candidates = 1;
+    const MatchResult single = match(pair.template_mesh, pair.target, options);
+    EXPECT_DOUBLE_EQ(single.stretch_weight, options.stretch_weight);
+    options.stiffness_candidates = 3;
+    const MatchResult chosen = match(pair.template_mesh, pair.target, options);
+    std::printf("kept weight %.3g, error %.4f -> %.4f\n", chosen.stretch_weight, pair.error(single),
+                pair.error(chosen));
+    const double w = options.stretch_weight;
+    EXPECT_TRUE(chosen.stretch_weight == w || chosen.stretch_weight == 4 * w ||
+                chosen.stretch_weight == 16 * w)
+        << chosen.stretch_weight;
+    EXPECT_LT(pair.error(chosen), 1.2 * pair.error(single) + 1e-3);
+    // The stiffer candidates' flows come on top.
+    EXPECT_GT(chosen.levels.front().iterations, single.levels.front().iterations);
+    options.stiffness_candidates = 0;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
 }
 
