@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "genflow/matching/match.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <numeric>
 
 #include "genflow/energies/edge_length_energy.h"
@@ -175,6 +178,29 @@ Embedding moved_embedding(const Embedding& embedding, const Similarity& similari
     return moved;
 }
 
+// Runs task(k) for every k < count on the OpenMP threads, one task per thread at a time: the
+// flows of the coarsest level are too small to split, but those from different starts or at
+// different stiffnesses are independent. The first exception a task threw is rethrown.
+template <class Task>
+void run_side_by_side(std::size_t count, const Task& task) {
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(count); ++k) {
+        try {
+            task(static_cast<std::size_t>(k));
+        } catch (...) {
+            const std::lock_guard<std::mutex> lock(failure_mutex);
+            if (!failure) {
+                failure = std::current_exception();
+            }
+        }
+    }
+    if (failure) {
+        std::rethrow_exception(failure);
+    }
+}
+
 // How far a placement of the coarsest template disagrees with the target intrinsically: the
 // median signature discrepancy, divided by the map's consistency with the eigenbases.
 double disagreement(const detail::SpectralDescriptors& spectral, const Eigen::MatrixX3d& deformed) {
@@ -266,67 +292,74 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                                      descriptors);
     };
 
-    bool cancelled = false;
+    std::atomic<bool> cancelled = false;
     // The flow of one level from `moved` (the template level's vertices, already placed).
     // `placement`: the similarity that took the template level to `moved`'s rest frame.
     // `descriptors`: the d_H augmented with them (signature_guidance), else the plain one.
     // `stretch_weight` > 0 adds that times the diagonal times the level's EdgeLengthEnergy.
-    const auto flow_level =
-        [&](int l, const TriangleMesh& moved, int iterations, const Similarity& placement,
-            MatchPrior prior, const PointDescriptors& descriptors = {}, double stretch_weight = 0) {
-            const Level& level = pyramid[static_cast<std::size_t>(l)];
-            std::optional<PartModel> parts;
-            if (options.parts) {  // this level's weights, joints moved with the template
-                parts = restrict_to(*options.parts, level.original_vertex);
-                for (Part& part : parts->parts) {
-                    part.joint_centre = placement.apply(part.joint_centre.transpose()).transpose();
-                }
+    // `reports`: whether it calls options.progress; of flows run side by side, one does (the
+    // others only stop when it was cancelled).
+    const auto flow_level = [&](int l, const TriangleMesh& moved, int iterations,
+                                const Similarity& placement, MatchPrior prior,
+                                const PointDescriptors& descriptors = {}, double stretch_weight = 0,
+                                bool reports = true) {
+        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        std::optional<PartModel> parts;
+        if (options.parts) {  // this level's weights, joints moved with the template
+            parts = restrict_to(*options.parts, level.original_vertex);
+            for (Part& part : parts->parts) {
+                part.joint_centre = placement.apply(part.joint_centre.transpose()).transpose();
             }
-            TriangleMesh rest = level.template_mesh;  // where the joint centres are bound
-            rest.V = placement.apply(rest.V);
-            std::shared_ptr<const EdgeLengthEnergy> stretch;
-            if (stretch_weight > 0) {
-                stretch = std::make_shared<EdgeLengthEnergy>(rest);
+        }
+        TriangleMesh rest = level.template_mesh;  // where the joint centres are bound
+        rest.V = placement.apply(rest.V);
+        std::shared_ptr<const EdgeLengthEnergy> stretch;
+        if (stretch_weight > 0) {
+            stretch = std::make_shared<EdgeLengthEnergy>(rest);
+        }
+        const auto energy_with_epsilon = [&](double epsilon_factor) {
+            std::vector<WeightedSumEnergy::Term> terms{
+                {1.0, std::make_shared<const PseudoHausdorffEnergy>(
+                          distance_to_target(level, epsilon_factor, descriptors))}};
+            if (stretch) {
+                terms.push_back({stretch_weight * diagonal, stretch});
             }
-            const auto energy_with_epsilon = [&](double epsilon_factor) {
-                std::vector<WeightedSumEnergy::Term> terms{
-                    {1.0, std::make_shared<const PseudoHausdorffEnergy>(
-                              distance_to_target(level, epsilon_factor, descriptors))}};
-                if (stretch) {
-                    terms.push_back({stretch_weight * diagonal, stretch});
-                }
-                return WeightedSumEnergy(std::move(terms));
-            };
-            const WeightedSumEnergy energy = energy_with_epsilon(1);
-            const std::unique_ptr<Metric> metric =
-                make_metric(options, prior, rest, parts ? &*parts : nullptr);
-            DescentOptions descent{.max_displacement = options.max_step * diagonal,
-                                   .max_steps = iterations,
-                                   .stagnation_tolerance = options.stagnation_tolerance,
-                                   .stagnation_window = 20,
-                                   .implicit = options.implicit};
-            if (options.progress) {
-                descent.progress = [&, l](const FlowProgress& p) {
-                    const bool go_on =
-                        options.progress({l, count, p.step, p.max_steps, p.energy, p.mesh});
-                    cancelled = cancelled || !go_on;
-                    return go_on;
-                };
-            }
-            if (l == count - 1 && options.coarse_epsilon != 1) {
-                // First half with the smoother d_H of a larger ε, then the level's own ε; the
-                // energies reported are all of the latter.
-                descent.max_steps = iterations / 2;
-                const FlowResult smooth = gradient_descent(
-                    moved, energy_with_epsilon(options.coarse_epsilon), *metric, descent);
-                descent.max_steps = iterations - smooth.steps;
-                FlowResult flow = gradient_descent(smooth.mesh, energy, *metric, descent);
-                flow.steps += smooth.steps;
-                flow.energy.insert(flow.energy.begin(), energy.value(moved));
-                return flow;
-            }
-            return gradient_descent(moved, energy, *metric, descent);
+            return WeightedSumEnergy(std::move(terms));
         };
+        const WeightedSumEnergy energy = energy_with_epsilon(1);
+        const std::unique_ptr<Metric> metric =
+            make_metric(options, prior, rest, parts ? &*parts : nullptr);
+        DescentOptions descent{.max_displacement = options.max_step * diagonal,
+                               .max_steps = iterations,
+                               .stagnation_tolerance = options.stagnation_tolerance,
+                               .stagnation_window = 20,
+                               .implicit = options.implicit};
+        if (options.progress && reports) {
+            descent.progress = [&, l](const FlowProgress& p) {
+                const bool go_on =
+                    options.progress({l, count, p.step, p.max_steps, p.energy, p.mesh});
+                if (!go_on) {
+                    cancelled = true;
+                }
+                return go_on;
+            };
+        } else if (options.progress) {
+            descent.progress = [&](const FlowProgress&) { return !cancelled; };
+        }
+        if (l == count - 1 && options.coarse_epsilon != 1) {
+            // First half with the smoother d_H of a larger ε, then the level's own ε; the
+            // energies reported are all of the latter.
+            descent.max_steps = iterations / 2;
+            const FlowResult smooth = gradient_descent(
+                moved, energy_with_epsilon(options.coarse_epsilon), *metric, descent);
+            descent.max_steps = iterations - smooth.steps;
+            FlowResult flow = gradient_descent(smooth.mesh, energy, *metric, descent);
+            flow.steps += smooth.steps;
+            flow.energy.insert(flow.energy.begin(), energy.value(moved));
+            return flow;
+        }
+        return gradient_descent(moved, energy, *metric, descent);
+    };
     const auto report = [](const TriangleMesh& mesh, const Level& level, const FlowResult& flow,
                            double seconds) {
         return MatchLevel{mesh.V.rows(),       level.target.V.rows(), flow.steps, flow.status,
@@ -348,14 +381,11 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     FlowResult best;
     const int selection_steps = std::min(options.selection_iterations, options.max_iterations);
     if (several_starts) {
-        std::vector<FlowResult> flows;
-        for (const Similarity& similarity : starts) {
-            flows.push_back(flow_level(count - 1, placed(similarity), selection_steps, similarity,
-                                       MatchPrior::H1));
-            if (cancelled) {
-                break;
-            }
-        }
+        std::vector<FlowResult> flows(starts.size());
+        run_side_by_side(starts.size(), [&](std::size_t k) {
+            flows[k] = flow_level(count - 1, placed(starts[k]), selection_steps, starts[k],
+                                  MatchPrior::H1, {}, 0, k == 0);
+        });
         chosen = choose_start(flows, *spectral, options.selection_tolerance);
         best = std::move(flows[chosen]);
     }
@@ -371,53 +401,63 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         // this first match implies.
         const TriangleMesh start_mesh = placed(starts[chosen]);
         int steps = 0;
+        // The guided flow, then the plain one; the result counts the steps of both.
         const auto guided_then_plain = [&](const PointDescriptors& descriptors,
-                                           double stretch_weight) {
+                                           double stretch_weight, bool reports = true) {
             FlowResult guided_flow =
                 flow_level(count - 1, start_mesh, options.max_iterations, starts[chosen],
-                           options.prior, descriptors, stretch_weight);
-            steps += guided_flow.steps;
+                           options.prior, descriptors, stretch_weight, reports);
             if (cancelled) {
                 return guided_flow;
             }
-            FlowResult plain = flow_level(count - 1, guided_flow.mesh, options.max_iterations,
-                                          starts[chosen], options.prior, {}, stretch_weight);
-            steps += plain.steps;
+            FlowResult plain =
+                flow_level(count - 1, guided_flow.mesh, options.max_iterations, starts[chosen],
+                           options.prior, {}, stretch_weight, reports);
+            plain.steps += guided_flow.steps;
             return plain;
         };
-        // The last round, at each stiffness of MatchOptions::stiffness_candidates: the stiffer
-        // ones settle at stretch_weight after their plain flow; the result that disagrees least
-        // with the target intrinsically is kept.
+        // The last round, at each stiffness of MatchOptions::stiffness_candidates, side by side:
+        // the stiffer ones settle at stretch_weight after their plain flow; the result that
+        // disagrees least with the target intrinsically is kept.
         const auto last_round = [&](const PointDescriptors& descriptors) {
             const int candidates = options.stretch_weight > 0 ? options.stiffness_candidates : 1;
-            FlowResult kept;
-            double lowest = std::numeric_limits<double>::infinity();
-            double weight = options.stretch_weight;
-            for (int k = 0; k < candidates && !cancelled; ++k, weight *= 4) {
-                FlowResult flow = guided_then_plain(descriptors, weight);
-                if (k > 0) {
-                    if (cancelled) {
-                        break;
-                    }
+            std::vector<FlowResult> flows(static_cast<std::size_t>(candidates));
+            const auto weight = [&](std::size_t k) {
+                return options.stretch_weight * std::pow(4.0, static_cast<double>(k));
+            };
+            run_side_by_side(flows.size(), [&](std::size_t k) {
+                flows[k] = guided_then_plain(descriptors, weight(k), k == 0);
+                if (k > 0 && !cancelled) {
                     FlowResult settled =
-                        flow_level(count - 1, flow.mesh, options.max_iterations, starts[chosen],
-                                   options.prior, {}, options.stretch_weight);
-                    steps += settled.steps;
-                    flow = std::move(settled);
+                        flow_level(count - 1, flows[k].mesh, options.max_iterations, starts[chosen],
+                                   options.prior, {}, options.stretch_weight, false);
+                    settled.steps += flows[k].steps;
+                    flows[k] = std::move(settled);
                 }
-                const double value = candidates > 1 ? disagreement(*spectral, flow.mesh.V) : 0;
-                if (k == 0 || value < lowest) {
-                    lowest = value;
-                    kept = std::move(flow);
-                    result.stretch_weight = weight;
+            });
+            std::size_t kept = 0;
+            if (!cancelled) {
+                double lowest = std::numeric_limits<double>::infinity();
+                for (std::size_t k = 0; k < flows.size(); ++k) {
+                    const double value =
+                        flows.size() > 1 ? disagreement(*spectral, flows[k].mesh.V) : 0;
+                    if (value < lowest) {
+                        lowest = value;
+                        kept = k;
+                    }
                 }
             }
-            return kept;
+            for (const FlowResult& flow : flows) {
+                steps += flow.steps;
+            }
+            result.stretch_weight = weight(kept);
+            return std::move(flows[kept]);
         };
         // The stretching energy joins the last round only: the first one serves to estimate the
         // functional map, which it made worse (MatchOptions::stretch_weight).
         if (options.eigenfunction_guidance > 0) {
             best = guided_then_plain(signature_descriptors, 0);
+            steps += best.steps;
             if (!cancelled) {
                 best = last_round(spectral->eigenfunction_descriptors(
                     best.mesh.V, coarsest.template_mesh.V, coarsest.target.V,

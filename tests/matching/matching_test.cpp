@@ -5,7 +5,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <atomic>
+#include <chrono>
 #include <numbers>
+#include <thread>
 
 #include "genflow/energies/enclosed_volume_energy.h"
 #include "genflow/energies/pseudo_hausdorff_energy.h"
@@ -557,6 +560,32 @@ TEST(Match, StiffnessCandidatesKeepOneAndReportIt) {
     EXPECT_GT(chosen.levels.front().iterations, single.levels.front().iterations);
     options.stiffness_candidates = 0;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
+}
+
+// The independent coarsest flows run side by side, but the progress callback sees one flow
+// at a time; returning false stops them all, and the match still returns the whole template.
+TEST(Match, ProgressSeesOneFlowAtATimeAndStopsThemAll) {
+    const BentLimbPair pair;
+    MatchOptions options;
+    options.levels = 2;
+    std::atomic<int> inside = 0;
+    std::atomic<int> calls = 0;
+    std::atomic<bool> overlapped = false;
+    options.progress = [&](const MatchProgress& progress) {
+        if (++inside > 1) {
+            overlapped = true;
+        }
+        EXPECT_EQ(progress.levels, 2);
+        std::this_thread::sleep_for(std::chrono::microseconds(200));  // widen any overlap
+        --inside;
+        return ++calls < 40;
+    };
+    const MatchResult result = match(pair.template_mesh, pair.target, options);
+    EXPECT_FALSE(overlapped);
+    EXPECT_EQ(calls, 40);  // none after the one that said stop
+    EXPECT_EQ(result.deformed.V.rows(), pair.template_mesh.V.rows());
+    EXPECT_TRUE(result.deformed.V.allFinite());
+    EXPECT_EQ(result.levels.size(), 1U);  // stopped on the coarsest level
 }
 
 TEST(Match, RejectsBadInput) {

@@ -170,8 +170,9 @@ struct MatchOptions {
     /// intrinsically is kept (the criterion that chooses among rigid starts). 1 runs
     /// stretch_weight only. Measured on the 12 pairs of $GENFLOW_DATA (h1, mean error, 1 → 3):
     /// michael 3.82 → 1.13 %, hand 2.56 → 2.25, makehuman body 0.72 → 0.61, small FAUST 0.88 →
-    /// 0.81, the others unchanged (within 0.01); 1–3 s more. (Softer candidates, 0.025, won on
-    /// the arm and lost 0.2 % there.)
+    /// 0.81, the others unchanged (within 0.01). The candidates flow side by side on the OpenMP
+    /// threads: 0.4–0.6 s more on two cores (1–3 s one after the other). (A softer candidate,
+    /// 0.025, won the criterion on the arm and lost 0.2 % there.)
     int stiffness_candidates = 3;
     RigidAlignmentOptions alignment;
     /// Penalties of the quasi-rigid prior.
@@ -186,7 +187,10 @@ struct MatchOptions {
     QuasiIsometricOptions isometric{.refresh_interval = 4};
     /// H1 smoothing length as a multiple of the template's mean edge length: λ = (k·h)².
     double h1_length = 5;
-    /// Called after every step; return false to stop. Optional.
+    /// Called after every step; return false to stop. Optional. Where the coarsest level runs
+    /// independent flows side by side (the rigid starts, the stiffness candidates), one of
+    /// them reports, possibly from another thread than the caller's, and the others stop when
+    /// it is told to: the callback is never called twice at once.
     std::function<bool(const MatchProgress&)> progress = {};
 };
 
