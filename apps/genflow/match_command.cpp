@@ -182,6 +182,13 @@ void register_match_command(CLI::App& app) {
         ->check(CLI::Range(1, 24))
         ->capture_default_str();
     command
+        ->add_option("--contenders", options->match.contenders,
+                     "Of those, the ones that agree within 25 % of the best go through the "
+                     "guided flows each (at most this many); the one that ends agreeing best "
+                     "is kept")
+        ->check(CLI::Range(1, 24))
+        ->capture_default_str();
+    command
         ->add_option("--signature-guidance", options->match.signature_guidance,
                      "Weight of the heat kernel signatures in the coarsest flow, as a fraction "
                      "of the diagonal (points are near only if close and alike; 0 = off)")

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "genflow/matching/match.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -78,13 +79,14 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         !detail::finite_at_least(options.selection_tolerance, 0) ||
         !detail::finite_at_least(options.signature_guidance, 0) ||
         !detail::finite_at_least(options.eigenfunction_guidance, 0) ||
-        !detail::finite_at_least(options.stretch_weight, 0) || options.stiffness_candidates < 1) {
+        !detail::finite_at_least(options.stretch_weight, 0) || options.stiffness_candidates < 1 ||
+        options.contenders < 1 || !detail::finite_at_least(options.contender_tolerance, 0)) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
             "coarse_vertices >= 100, coarse_epsilon >= 1, selection_tolerance >= 0, "
-            "signature_guidance >= 0, eigenfunction_guidance >= 0, stretch_weight >= 0 and "
-            "stiffness_candidates >= 1");
+            "signature_guidance >= 0, eigenfunction_guidance >= 0, stretch_weight >= 0, "
+            "stiffness_candidates >= 1, contenders >= 1 and contender_tolerance >= 0");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -180,12 +182,14 @@ Embedding moved_embedding(const Embedding& embedding, const Similarity& similari
 
 // Runs task(k) for every k < count on the OpenMP threads, one task per thread at a time: the
 // flows of the coarsest level are too small to split, but those from different starts or at
-// different stiffnesses are independent. The first exception a task threw is rethrown.
+// different stiffnesses are independent. The first exception a task threw is rethrown. A
+// single task runs on the calling thread, so that tasks it runs side by side in turn still do
+// (a nested parallel region runs on one thread).
 template <class Task>
 void run_side_by_side(std::size_t count, const Task& task) {
     std::exception_ptr failure;
     std::mutex failure_mutex;
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
     for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(count); ++k) {
         try {
             task(static_cast<std::size_t>(k));
@@ -207,27 +211,35 @@ double disagreement(const detail::SpectralDescriptors& spectral, const Eigen::Ma
     return spectral.discrepancy(deformed) / spectral.map_consistency(deformed);
 }
 
-// Of the flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
-// one whose correspondence agrees best with the target intrinsically (MatchOptions::align).
-std::size_t choose_start(const std::vector<FlowResult>& flows,
-                         const detail::SpectralDescriptors& spectral, double tolerance) {
+// The flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
+// one whose correspondence agrees best with the target intrinsically first (MatchOptions::align),
+// then those whose disagreement is within `contender_tolerance` of its, at most `contenders`
+// in all, in order (MatchOptions::contenders).
+std::vector<std::size_t> choose_starts(const std::vector<FlowResult>& flows,
+                                       const detail::SpectralDescriptors& spectral,
+                                       double tolerance, double contender_tolerance,
+                                       int contenders) {
     if (flows.size() < 2) {
-        return 0;
+        return {0};
     }
     double lowest = std::numeric_limits<double>::infinity();
     for (const FlowResult& flow : flows) {
         lowest = std::min(lowest, flow.energy.back());
     }
-    std::size_t chosen = 0;
-    double best_agreement = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<double, std::size_t>> shortlist;
     for (std::size_t k = 0; k < flows.size(); ++k) {
         if (flows[k].energy.back() <= (1 + tolerance) * lowest) {
-            const double value = disagreement(spectral, flows[k].mesh.V);
-            if (value < best_agreement) {
-                best_agreement = value;
-                chosen = k;
-            }
+            shortlist.emplace_back(disagreement(spectral, flows[k].mesh.V), k);
         }
+    }
+    std::sort(shortlist.begin(), shortlist.end());
+    std::vector<std::size_t> chosen;
+    for (const auto& [value, k] : shortlist) {
+        if (static_cast<int>(chosen.size()) == contenders ||
+            value > (1 + contender_tolerance) * shortlist.front().first) {
+            break;
+        }
+        chosen.push_back(k);
     }
     return chosen;
 }
@@ -378,6 +390,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         return moved;
     };
     std::size_t chosen = 0;
+    std::vector<std::size_t> contenders{0};  // the starts the guided rounds decide between
     FlowResult best;
     const int selection_steps = std::min(options.selection_iterations, options.max_iterations);
     if (several_starts) {
@@ -386,7 +399,9 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             flows[k] = flow_level(count - 1, placed(starts[k]), selection_steps, starts[k],
                                   MatchPrior::H1, {}, 0, k == 0);
         });
-        chosen = choose_start(flows, *spectral, options.selection_tolerance);
+        contenders = choose_starts(flows, *spectral, options.selection_tolerance,
+                                   options.contender_tolerance, options.contenders);
+        chosen = contenders.front();
         best = std::move(flows[chosen]);
     }
     if (cancelled) {
@@ -399,78 +414,109 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         // no paw of the horse and cats.) First guided by the signatures, then, if
         // eigenfunction_guidance, by the eigenfunctions carried over by the functional map that
         // this first match implies.
-        const TriangleMesh start_mesh = placed(starts[chosen]);
-        int steps = 0;
-        // The guided flow, then the plain one; the result counts the steps of both.
-        const auto guided_then_plain = [&](const PointDescriptors& descriptors,
-                                           double stretch_weight, bool reports = true) {
-            FlowResult guided_flow =
-                flow_level(count - 1, start_mesh, options.max_iterations, starts[chosen],
-                           options.prior, descriptors, stretch_weight, reports);
-            if (cancelled) {
-                return guided_flow;
-            }
-            FlowResult plain =
-                flow_level(count - 1, guided_flow.mesh, options.max_iterations, starts[chosen],
-                           options.prior, {}, stretch_weight, reports);
-            plain.steps += guided_flow.steps;
-            return plain;
+        //
+        // The guided rounds from start s: the coarsest level's result (all its steps counted),
+        // the stretch weight kept and how far the result disagrees with the target.
+        struct GuidedMatch {
+            FlowResult flow;
+            double stretch_weight = 0;
+            double disagreement = 0;
         };
-        // The last round, at each stiffness of MatchOptions::stiffness_candidates, side by side:
-        // the stiffer ones settle at stretch_weight after their plain flow; the result that
-        // disagrees least with the target intrinsically is kept.
-        const auto last_round = [&](const PointDescriptors& descriptors) {
-            const int candidates = options.stretch_weight > 0 ? options.stiffness_candidates : 1;
-            std::vector<FlowResult> flows(static_cast<std::size_t>(candidates));
-            const auto weight = [&](std::size_t k) {
-                return options.stretch_weight * std::pow(4.0, static_cast<double>(k));
-            };
-            run_side_by_side(flows.size(), [&](std::size_t k) {
-                flows[k] = guided_then_plain(descriptors, weight(k), k == 0);
-                if (k > 0 && !cancelled) {
-                    FlowResult settled =
-                        flow_level(count - 1, flows[k].mesh, options.max_iterations, starts[chosen],
-                                   options.prior, {}, options.stretch_weight, false);
-                    settled.steps += flows[k].steps;
-                    flows[k] = std::move(settled);
+        const auto guided_match = [&](std::size_t s, bool reports) {
+            const TriangleMesh start_mesh = placed(starts[s]);
+            // The guided flow, then the plain one; the result counts the steps of both.
+            const auto guided_then_plain = [&](const PointDescriptors& descriptors,
+                                               double stretch_weight, bool reporting) {
+                FlowResult guided_flow =
+                    flow_level(count - 1, start_mesh, options.max_iterations, starts[s],
+                               options.prior, descriptors, stretch_weight, reporting);
+                if (cancelled) {
+                    return guided_flow;
                 }
-            });
-            std::size_t kept = 0;
-            if (!cancelled) {
-                double lowest = std::numeric_limits<double>::infinity();
+                FlowResult plain =
+                    flow_level(count - 1, guided_flow.mesh, options.max_iterations, starts[s],
+                               options.prior, {}, stretch_weight, reporting);
+                plain.steps += guided_flow.steps;
+                return plain;
+            };
+            // The last round, at each stiffness of MatchOptions::stiffness_candidates, side by
+            // side: the stiffer ones settle at stretch_weight after their plain flow; the result
+            // that disagrees least with the target intrinsically is kept.
+            const auto last_round = [&](const PointDescriptors& descriptors, int first_steps) {
+                const int candidates =
+                    options.stretch_weight > 0 ? options.stiffness_candidates : 1;
+                std::vector<FlowResult> flows(static_cast<std::size_t>(candidates));
+                const auto weight = [&](std::size_t k) {
+                    return options.stretch_weight * std::pow(4.0, static_cast<double>(k));
+                };
+                run_side_by_side(flows.size(), [&](std::size_t k) {
+                    flows[k] = guided_then_plain(descriptors, weight(k), reports && k == 0);
+                    if (k > 0 && !cancelled) {
+                        FlowResult settled =
+                            flow_level(count - 1, flows[k].mesh, options.max_iterations, starts[s],
+                                       options.prior, {}, options.stretch_weight, false);
+                        settled.steps += flows[k].steps;
+                        flows[k] = std::move(settled);
+                    }
+                });
+                GuidedMatch outcome;
+                std::size_t kept = 0;
+                int steps = first_steps;
                 for (std::size_t k = 0; k < flows.size(); ++k) {
-                    const double value =
-                        flows.size() > 1 ? disagreement(*spectral, flows[k].mesh.V) : 0;
-                    if (value < lowest) {
-                        lowest = value;
+                    steps += flows[k].steps;
+                    const double value = disagreement(*spectral, flows[k].mesh.V);
+                    if (k == 0 || (!cancelled && value < outcome.disagreement)) {
+                        outcome.disagreement = value;
                         kept = k;
                     }
                 }
+                outcome.flow = std::move(flows[kept]);
+                outcome.flow.steps = steps;
+                outcome.stretch_weight = weight(kept);
+                return outcome;
+            };
+            // The stretching energy joins the last round only: the first one serves to estimate
+            // the functional map, which it made worse (MatchOptions::stretch_weight).
+            GuidedMatch outcome;
+            if (options.eigenfunction_guidance > 0) {
+                const FlowResult first = guided_then_plain(signature_descriptors, 0, reports);
+                if (cancelled) {
+                    outcome.flow = first;
+                } else {
+                    outcome =
+                        last_round(spectral->eigenfunction_descriptors(
+                                       first.mesh.V, coarsest.template_mesh.V, coarsest.target.V,
+                                       options.eigenfunction_guidance * diagonal),
+                                   first.steps);
+                }
+            } else {
+                outcome = last_round(signature_descriptors, 0);
             }
-            for (const FlowResult& flow : flows) {
-                steps += flow.steps;
-            }
-            result.stretch_weight = weight(kept);
-            return std::move(flows[kept]);
+            // The level reports the plain d_H, from the rigid start on.
+            const PseudoHausdorffEnergy plain_distance = distance_to_target(coarsest, 1, {});
+            outcome.flow.energy.insert(outcome.flow.energy.begin(),
+                                       plain_distance.value(start_mesh));
+            outcome.flow.energy.back() = plain_distance.value(outcome.flow.mesh);
+            return outcome;
         };
-        // The stretching energy joins the last round only: the first one serves to estimate the
-        // functional map, which it made worse (MatchOptions::stretch_weight).
-        if (options.eigenfunction_guidance > 0) {
-            best = guided_then_plain(signature_descriptors, 0);
-            steps += best.steps;
-            if (!cancelled) {
-                best = last_round(spectral->eigenfunction_descriptors(
-                    best.mesh.V, coarsest.template_mesh.V, coarsest.target.V,
-                    options.eigenfunction_guidance * diagonal));
+        // Starts that agreed about as well after the selection flows go through the guided
+        // rounds each, side by side (their stiffness candidates then one after the other); the
+        // one that ends agreeing best is kept (MatchOptions::contenders).
+        std::vector<GuidedMatch> outcomes(contenders.size());
+        run_side_by_side(contenders.size(),
+                         [&](std::size_t k) { outcomes[k] = guided_match(contenders[k], k == 0); });
+        std::size_t kept = 0;
+        int steps = 0;
+        for (std::size_t k = 0; k < outcomes.size(); ++k) {
+            steps += outcomes[k].flow.steps;
+            if (!cancelled && outcomes[k].disagreement < outcomes[kept].disagreement) {
+                kept = k;
             }
-        } else {
-            best = last_round(signature_descriptors);
         }
+        chosen = contenders[kept];
+        best = std::move(outcomes[kept].flow);
         best.steps = steps;
-        // The level reports the plain d_H, from the rigid start on.
-        const PseudoHausdorffEnergy plain_distance = distance_to_target(coarsest, 1, {});
-        best.energy.insert(best.energy.begin(), plain_distance.value(start_mesh));
-        best.energy.back() = plain_distance.value(best.mesh);
+        result.stretch_weight = outcomes[kept].stretch_weight;
     } else if (!several_starts || options.prior != MatchPrior::H1) {
         best = flow_level(count - 1, placed(starts[chosen]), options.max_iterations, starts[chosen],
                           options.prior);

@@ -616,7 +616,13 @@ TEST(Match, RejectsBadInput) {
         MatchOptions eigenfunctions;
         eigenfunctions.eigenfunction_guidance = tolerance;
         EXPECT_THROW((void)match(mesh, mesh, eigenfunctions), InvalidInput);
+        MatchOptions contention;
+        contention.contender_tolerance = tolerance;
+        EXPECT_THROW((void)match(mesh, mesh, contention), InvalidInput);
     }
+    MatchOptions no_contender;
+    no_contender.contenders = 0;
+    EXPECT_THROW((void)match(mesh, mesh, no_contender), InvalidInput);
 }
 
 TEST(Correspondence, ClosestPointsLieOnTheTarget) {

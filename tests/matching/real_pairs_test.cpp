@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "genflow/io/read_mesh.h"
@@ -53,18 +54,16 @@ TEST(RealPairs, SmallPairsMatchWithoutAFlippedStart) {
     EXPECT_LT(error_sum / matched, 0.02);
 }
 
-// The full TOSCA michael pair (52.6K vertices, the head nodded 40° between the poses): a
-// stretch weight too soft let the eigenfunctions' guidance turn the head about the neck (3.8 %
-// mean error, the head's many vertices 5.5 %); the stiffer candidate that agrees best with the
-// target keeps it (1.1 %).
-TEST(RealPairs, FullBodyKeepsItsHeadOnStraight) {
+// match() with its defaults on the pair of pairs.json so named: the mean error over the
+// ground truth's diagonal; nothing without the data or that pair.
+std::optional<double> default_match_error(const std::string& name) {
     const auto data = test::data_directory();
     if (!data) {
-        GTEST_SKIP() << "no data directory (set GENFLOW_DATA)";
+        return std::nullopt;
     }
     const nlohmann::json pairs = nlohmann::json::parse(std::ifstream(*data / "pairs.json"));
     for (const auto& pair : pairs) {
-        if (pair["name"] != "tosca_michael_0_1") {
+        if (pair["name"] != name) {
             continue;
         }
         const TriangleMesh template_mesh = read_mesh(*data / pair["template"].get<std::string>());
@@ -74,11 +73,34 @@ TEST(RealPairs, FullBodyKeepsItsHeadOnStraight) {
         const MatchResult result = match(template_mesh, target);
         const double error =
             (result.deformed.V - truth.V).rowwise().norm().mean() / bounding_box_diagonal(truth);
-        std::printf("mean error %.4f, kept stretch weight %.3g\n", error, result.stretch_weight);
-        EXPECT_LT(error, 0.02);
-        return;
+        std::printf("%s: mean error %.4f, kept stretch weight %.3g\n", name.c_str(), error,
+                    result.stretch_weight);
+        return error;
     }
-    GTEST_SKIP() << "pairs.json has no tosca_michael_0_1";
+    return std::nullopt;
+}
+
+// The full TOSCA michael pair (52.6K vertices, the head nodded 40° between the poses): a
+// stretch weight too soft let the eigenfunctions' guidance turn the head about the neck (3.8 %
+// mean error, the head's many vertices 5.5 %); the stiffer candidate that agrees best with the
+// target keeps it (1.1 %).
+TEST(RealPairs, FullBodyKeepsItsHeadOnStraight) {
+    const std::optional<double> error = default_match_error("tosca_michael_0_1");
+    if (!error) {
+        GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no tosca_michael_0_1 in it";
+    }
+    EXPECT_LT(*error, 0.02);
+}
+
+// The libigl arm (8.3K vertices, bent at the elbow and wrist): the start that agreed best after
+// the selection flows is twisted about the arm (6.7 % mean error at the end); its rival, 13 %
+// behind then, ends agreeing better and 2.1 % from the truth (MatchOptions::contenders).
+TEST(RealPairs, TwistedArmStartLosesToItsRival) {
+    const std::optional<double> error = default_match_error("libigl_arm_rest_pose2");
+    if (!error) {
+        GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl_arm_rest_pose2 in it";
+    }
+    EXPECT_LT(*error, 0.03);
 }
 
 }  // namespace
