@@ -201,6 +201,12 @@ void register_match_command(CLI::App& app) {
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     command
+        ->add_option("--guidance-candidates", options->match.guidance_candidates,
+                     "Run that second guided flow at the eigenfunction guidance times 1, 2, 4, "
+                     "... and keep the result that agrees best with the target intrinsically")
+        ->check(CLI::Range(1, 8))
+        ->capture_default_str();
+    command
         ->add_option("--stretch-weight", options->match.stretch_weight,
                      "Weight of the template's edge stretching (relative to its rest lengths, "
                      "times the diagonal) added to d_H in the last guided coarsest flow; it "

@@ -60,6 +60,7 @@ nlohmann::json run_match_job(MatchJob job) {
           {0, 0, 0, 1}}},
         {"pseudo_hausdorff", result.hausdorff_energy},
         {"stretch_weight", result.stretch_weight},
+        {"eigenfunction_guidance", result.eigenfunction_guidance},
         {"hausdorff", distances.hausdorff},
         {"mean_distance", distances.mean},
         {"target_bbox_diagonal", diagonal},

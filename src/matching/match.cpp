@@ -80,13 +80,15 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         !detail::finite_at_least(options.signature_guidance, 0) ||
         !detail::finite_at_least(options.eigenfunction_guidance, 0) ||
         !detail::finite_at_least(options.stretch_weight, 0) || options.stiffness_candidates < 1 ||
-        options.contenders < 1 || !detail::finite_at_least(options.contender_tolerance, 0)) {
+        options.contenders < 1 || !detail::finite_at_least(options.contender_tolerance, 0) ||
+        options.guidance_candidates < 1 || options.guidance_candidates > 8) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
             "coarse_vertices >= 100, coarse_epsilon >= 1, selection_tolerance >= 0, "
             "signature_guidance >= 0, eigenfunction_guidance >= 0, stretch_weight >= 0, "
-            "stiffness_candidates >= 1, contenders >= 1 and contender_tolerance >= 0");
+            "stiffness_candidates >= 1, contenders >= 1, contender_tolerance >= 0 and "
+            "guidance_candidates in [1, 8]");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -420,6 +422,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         struct GuidedMatch {
             FlowResult flow;
             double stretch_weight = 0;
+            double eigenfunction_guidance = 0;
             double disagreement = 0;
         };
         const auto guided_match = [&](std::size_t s, bool reports) {
@@ -439,42 +442,48 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 plain.steps += guided_flow.steps;
                 return plain;
             };
-            // The last round, at each stiffness of MatchOptions::stiffness_candidates, side by
-            // side: the stiffer ones settle at stretch_weight after their plain flow; the result
-            // that disagrees least with the target intrinsically is kept.
-            const auto last_round = [&](const PointDescriptors& descriptors, int first_steps) {
-                const int candidates =
-                    options.stretch_weight > 0 ? options.stiffness_candidates : 1;
-                std::vector<FlowResult> flows(static_cast<std::size_t>(candidates));
-                const auto weight = [&](std::size_t k) {
-                    return options.stretch_weight * std::pow(4.0, static_cast<double>(k));
+            // The last round, at each stiffness of MatchOptions::stiffness_candidates and with
+            // each of `guidances` (descriptors and their weight), side by side: the stiffer ones
+            // settle at stretch_weight after their plain flow; the result that disagrees least
+            // with the target intrinsically is kept.
+            const auto last_round =
+                [&](const std::vector<std::pair<PointDescriptors, double>>& guidances,
+                    int first_steps) {
+                    const auto stiffnesses = static_cast<std::size_t>(
+                        options.stretch_weight > 0 ? options.stiffness_candidates : 1);
+                    std::vector<FlowResult> flows(stiffnesses * guidances.size());
+                    const auto weight = [&](std::size_t t) {
+                        return options.stretch_weight *
+                               std::pow(4.0, static_cast<double>(t % stiffnesses));
+                    };
+                    run_side_by_side(flows.size(), [&](std::size_t t) {
+                        flows[t] = guided_then_plain(guidances[t / stiffnesses].first, weight(t),
+                                                     reports && t == 0);
+                        if (t % stiffnesses > 0 && !cancelled) {
+                            FlowResult settled = flow_level(
+                                count - 1, flows[t].mesh, options.max_iterations, starts[s],
+                                options.prior, {}, options.stretch_weight, false);
+                            settled.steps += flows[t].steps;
+                            flows[t] = std::move(settled);
+                        }
+                    });
+                    GuidedMatch outcome;
+                    std::size_t kept = 0;
+                    int steps = first_steps;
+                    for (std::size_t t = 0; t < flows.size(); ++t) {
+                        steps += flows[t].steps;
+                        const double value = disagreement(*spectral, flows[t].mesh.V);
+                        if (t == 0 || (!cancelled && value < outcome.disagreement)) {
+                            outcome.disagreement = value;
+                            kept = t;
+                        }
+                    }
+                    outcome.flow = std::move(flows[kept]);
+                    outcome.flow.steps = steps;
+                    outcome.stretch_weight = weight(kept);
+                    outcome.eigenfunction_guidance = guidances[kept / stiffnesses].second;
+                    return outcome;
                 };
-                run_side_by_side(flows.size(), [&](std::size_t k) {
-                    flows[k] = guided_then_plain(descriptors, weight(k), reports && k == 0);
-                    if (k > 0 && !cancelled) {
-                        FlowResult settled =
-                            flow_level(count - 1, flows[k].mesh, options.max_iterations, starts[s],
-                                       options.prior, {}, options.stretch_weight, false);
-                        settled.steps += flows[k].steps;
-                        flows[k] = std::move(settled);
-                    }
-                });
-                GuidedMatch outcome;
-                std::size_t kept = 0;
-                int steps = first_steps;
-                for (std::size_t k = 0; k < flows.size(); ++k) {
-                    steps += flows[k].steps;
-                    const double value = disagreement(*spectral, flows[k].mesh.V);
-                    if (k == 0 || (!cancelled && value < outcome.disagreement)) {
-                        outcome.disagreement = value;
-                        kept = k;
-                    }
-                }
-                outcome.flow = std::move(flows[kept]);
-                outcome.flow.steps = steps;
-                outcome.stretch_weight = weight(kept);
-                return outcome;
-            };
             // The stretching energy joins the last round only: the first one serves to estimate
             // the functional map, which it made worse (MatchOptions::stretch_weight).
             GuidedMatch outcome;
@@ -483,14 +492,18 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 if (cancelled) {
                     outcome.flow = first;
                 } else {
-                    outcome =
-                        last_round(spectral->eigenfunction_descriptors(
-                                       first.mesh.V, coarsest.template_mesh.V, coarsest.target.V,
-                                       options.eigenfunction_guidance * diagonal),
-                                   first.steps);
+                    std::vector<std::pair<PointDescriptors, double>> guidances;
+                    for (int j = 0; j < options.guidance_candidates; ++j) {
+                        const double guidance = options.eigenfunction_guidance * (1 << j);
+                        guidances.emplace_back(spectral->eigenfunction_descriptors(
+                                                   first.mesh.V, coarsest.template_mesh.V,
+                                                   coarsest.target.V, guidance * diagonal),
+                                               guidance);
+                    }
+                    outcome = last_round(guidances, first.steps);
                 }
             } else {
-                outcome = last_round(signature_descriptors, 0);
+                outcome = last_round({{signature_descriptors, 0.0}}, 0);
             }
             // The level reports the plain d_H, from the rigid start on.
             const PseudoHausdorffEnergy plain_distance = distance_to_target(coarsest, 1, {});
@@ -517,6 +530,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         best = std::move(outcomes[kept].flow);
         best.steps = steps;
         result.stretch_weight = outcomes[kept].stretch_weight;
+        result.eigenfunction_guidance = outcomes[kept].eigenfunction_guidance;
     } else if (!several_starts || options.prior != MatchPrior::H1) {
         best = flow_level(count - 1, placed(starts[chosen]), options.max_iterations, starts[chosen],
                           options.prior);

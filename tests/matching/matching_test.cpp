@@ -297,7 +297,8 @@ TEST(Match, ArticulatedPriorFollowsABendTheRigidPriorCannot) {
     MatchOptions options;
     options.prior = MatchPrior::Articulated;
     options.align = false;
-    options.stiffness_candidates = 1;  // Match.StiffnessCandidatesKeepOneAndReportIt
+    options.stiffness_candidates = 1;  // Match.StiffnessAndGuidanceCandidates...
+    options.guidance_candidates = 1;
     options.parts = two_part_arm(pair.template_mesh);
     const MatchResult articulated = match(pair.template_mesh, pair.target, options);
     options.prior = MatchPrior::Rigid;
@@ -350,6 +351,7 @@ TEST(Match, EpsilonScheduleEndsOnTheTargetAndReportsTheLevelsOwnDistance) {
     MatchOptions options;
     options.align = false;
     options.stiffness_candidates = 1;  // fewer flows to wait for; the schedule is the same
+    options.guidance_candidates = 1;
     const MatchResult plain = match(pair.template_mesh, pair.target, options);
     options.coarse_epsilon = 3;
     const MatchResult scheduled = match(pair.template_mesh, pair.target, options);
@@ -358,7 +360,8 @@ TEST(Match, EpsilonScheduleEndsOnTheTargetAndReportsTheLevelsOwnDistance) {
     // Each of the guided level's flows splits its max_iterations between the two ε: signatures
     // and plain, then per stiffness candidate eigenfunctions and plain, and for the stiffer ones
     // the flow that settles them.
-    const int flows = 2 + 2 + 3 * (options.stiffness_candidates - 1);
+    const int flows =
+        2 + options.guidance_candidates * (2 + 3 * (options.stiffness_candidates - 1));
     EXPECT_LE(scheduled.levels[0].iterations, flows * options.max_iterations);
     EXPECT_LT(scheduled.hausdorff_energy, 1.5 * plain.hausdorff_energy)
         << scheduled.hausdorff_energy << " " << plain.hausdorff_energy;
@@ -493,7 +496,8 @@ TEST(Match, GuidanceReportsThePlainDistanceAndMatchesTheLimb) {
     const BentLimbPair pair;
     MatchOptions options;
     options.align = false;
-    options.stiffness_candidates = 1;  // Match.StiffnessCandidatesKeepOneAndReportIt
+    options.stiffness_candidates = 1;  // Match.StiffnessAndGuidanceCandidates...
+    options.guidance_candidates = 1;
     options.signature_guidance = 0;
     const MatchResult plain = match(pair.template_mesh, pair.target, options);
     options.signature_guidance = 0.1;
@@ -520,6 +524,7 @@ TEST(Match, StretchingEnergyKeepsEdgeLengthsAndTheMatch) {
     MatchOptions options;
     options.align = false;
     options.stiffness_candidates = 1;
+    options.guidance_candidates = 1;
     options.stretch_weight = 0;
     const MatchResult free = match(pair.template_mesh, pair.target, options);
     options.stretch_weight = 0.1;
@@ -533,33 +538,46 @@ TEST(Match, StretchingEnergyKeepsEdgeLengthsAndTheMatch) {
     EXPECT_LT(pair.error(stretched), pair.error(free));
     EXPECT_LT(stretched.hausdorff_energy, 1.2 * free.hausdorff_energy);
     EXPECT_EQ(free.stretch_weight, 0);
+    EXPECT_DOUBLE_EQ(free.eigenfunction_guidance, 0.1);
     EXPECT_DOUBLE_EQ(stretched.stretch_weight, 0.1);
     options.stretch_weight = -1;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
 }
 
-// The last guided round at the stretch weight and at stiffer ones keeps one of them, as good a
-// match as the stretch weight's alone on the bent limb, and says which.
-TEST(Match, StiffnessCandidatesKeepOneAndReportIt) {
+// The last guided round at the stretch weight and at stiffer ones, with the eigenfunction
+// guidance and twice it, keeps one of them, as good a match as the defaults' alone on the bent
+// limb, and says which.
+TEST(Match, StiffnessAndGuidanceCandidatesKeepOneAndReportIt) {
     const BentLimbPair pair;
     MatchOptions options;
     options.align = false;
     options.stiffness_candidates = 1;
+    options.guidance_candidates = 1;
     const MatchResult single = match(pair.template_mesh, pair.target, options);
     EXPECT_DOUBLE_EQ(single.stretch_weight, options.stretch_weight);
+    EXPECT_DOUBLE_EQ(single.eigenfunction_guidance, options.eigenfunction_guidance);
     options.stiffness_candidates = 3;
+    options.guidance_candidates = 2;
     const MatchResult chosen = match(pair.template_mesh, pair.target, options);
-    std::printf("kept weight %.3g, error %.4f -> %.4f\n", chosen.stretch_weight, pair.error(single),
-                pair.error(chosen));
+    std::printf("kept weight %.3g and guidance %.3g, error %.4f -> %.4f\n", chosen.stretch_weight,
+                chosen.eigenfunction_guidance, pair.error(single), pair.error(chosen));
     const double w = options.stretch_weight;
     EXPECT_TRUE(chosen.stretch_weight == w || chosen.stretch_weight == 4 * w ||
                 chosen.stretch_weight == 16 * w)
         << chosen.stretch_weight;
+    const double g = options.eigenfunction_guidance;
+    EXPECT_TRUE(chosen.eigenfunction_guidance == g || chosen.eigenfunction_guidance == 2 * g)
+        << chosen.eigenfunction_guidance;
     EXPECT_LT(pair.error(chosen), 1.2 * pair.error(single) + 1e-3);
     // The stiffer candidates' flows come on top.
     EXPECT_GT(chosen.levels.front().iterations, single.levels.front().iterations);
     options.stiffness_candidates = 0;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
+    options.stiffness_candidates = 3;
+    for (const int wrong : {0, 9}) {
+        options.guidance_candidates = wrong;
+        EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
+    }
 }
 
 // The independent coarsest flows run side by side, but the progress callback sees one flow

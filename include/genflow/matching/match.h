@@ -156,6 +156,16 @@ struct MatchOptions {
     /// 5.1 → 3.1 %, centaur 2.4 → 1.2 %, makehuman body 1.9 → 1.1 %, wolf 1.3 → 0.9 % (its paw
     /// back on its own side), at 0.5–2 s more (docs/eval/results.md).
     double eigenfunction_guidance = 0.1;
+    /// How strongly the eigenfunctions should guide depends on the pair, as the stiffness does
+    /// (stiffness_candidates): the last round can also run at eigenfunction_guidance × 2^j for
+    /// j < guidance_candidates (each with every stiffness, all side by side), keeping the
+    /// result that disagrees least with the target. Off (1) by default: with 2, on the 12 pairs
+    /// of $GENFLOW_DATA (h1, mean error) hand 2.25 → 1.78 %, arm 2.13 → 1.91, FAUST 1.38 →
+    /// 1.31, makehuman body 0.61 → 0.57, small centaur 1.07 → 0.95, wolf 0.55 → 0.53, horse
+    /// 1.00 → 0.95, small FAUST 0.81 → 0.83, but the generated bent limb of the benchmark
+    /// 2.30 → 2.83 %, the horse's Hausdorff 0.96 → 3.09 % (a fold at an ear, kept on a near
+    /// tie: 0.1704 against 0.1707) and the body's 0.78 → 1.91 %, at 1.5–6 s more.
+    int guidance_candidates = 1;
     /// The last guided round (the eigenfunctions', else the signatures') flows on d_H plus
     /// stretch_weight × the target's diagonal × the EdgeLengthEnergy of the coarsest template
     /// level at its rigid start: d_H cannot see where along the target's surface a point lands,
@@ -228,6 +238,9 @@ struct MatchResult {
     /// The stretch weight of the kept last guided round (MatchOptions::stiffness_candidates);
     /// 0 when no guided round had the stretching energy.
     double stretch_weight = 0;
+    /// The eigenfunction guidance of the kept last round (MatchOptions::guidance_candidates);
+    /// 0 without it.
+    double eigenfunction_guidance = 0;
     double alignment_seconds = 0;
     double seconds = 0;  ///< everything
     /// True if the finest level's flow stopped on its own (stagnation or no descent left).
