@@ -492,13 +492,17 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 if (cancelled) {
                     outcome.flow = first;
                 } else {
+                    // The descriptors' spread is their weight: the map is estimated once and
+                    // the stronger guidances are its descriptors scaled (2^j, exactly).
+                    const PointDescriptors descriptors = spectral->eigenfunction_descriptors(
+                        first.mesh.V, coarsest.template_mesh.V, coarsest.target.V,
+                        options.eigenfunction_guidance * diagonal);
                     std::vector<std::pair<PointDescriptors, double>> guidances;
                     for (int j = 0; j < options.guidance_candidates; ++j) {
-                        const double guidance = options.eigenfunction_guidance * (1 << j);
-                        guidances.emplace_back(spectral->eigenfunction_descriptors(
-                                                   first.mesh.V, coarsest.template_mesh.V,
-                                                   coarsest.target.V, guidance * diagonal),
-                                               guidance);
+                        const double factor = 1 << j;
+                        guidances.emplace_back(PointDescriptors{factor * descriptors.moving,
+                                                                factor * descriptors.fixed},
+                                               factor * options.eigenfunction_guidance);
                     }
                     outcome = last_round(guidances, first.steps);
                 }
