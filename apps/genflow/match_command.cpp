@@ -219,6 +219,18 @@ void register_match_command(CLI::App& app) {
                      "result that agrees best with the target intrinsically (1 = the weight only)")
         ->check(CLI::Range(1, 8))
         ->capture_default_str();
+    command
+        ->add_option("--refinement-guidances", options->match.refinement_guidances,
+                     "Refine the second coarsest level with flows guided by the eigenfunctions "
+                     "at the eigenfunction guidance times 1, 1/2, ... (this many) and keep, of "
+                     "those and the plain flow, the result that agrees best (0 = off)")
+        ->check(CLI::Range(0, 8))
+        ->capture_default_str();
+    command
+        ->add_option("--refinement-iterations", options->match.refinement_iterations,
+                     "Steps of each guided refining flow")
+        ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
     command->add_flag("--implicit", options->match.implicit,
                       "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
     command->add_flag("--no-align", options->no_align,

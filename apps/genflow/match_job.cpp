@@ -61,6 +61,7 @@ nlohmann::json run_match_job(MatchJob job) {
         {"pseudo_hausdorff", result.hausdorff_energy},
         {"stretch_weight", result.stretch_weight},
         {"eigenfunction_guidance", result.eigenfunction_guidance},
+        {"refinement_guidance", result.refinement_guidance},
         {"hausdorff", distances.hausdorff},
         {"mean_distance", distances.mean},
         {"target_bbox_diagonal", diagonal},

@@ -81,14 +81,17 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         !detail::finite_at_least(options.eigenfunction_guidance, 0) ||
         !detail::finite_at_least(options.stretch_weight, 0) || options.stiffness_candidates < 1 ||
         options.contenders < 1 || !detail::finite_at_least(options.contender_tolerance, 0) ||
-        options.guidance_candidates < 1 || options.guidance_candidates > 8) {
+        options.guidance_candidates < 1 || options.guidance_candidates > 8 ||
+        options.refinement_guidances < 0 || options.refinement_guidances > 8 ||
+        options.refinement_iterations < 0) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
             "coarse_vertices >= 100, coarse_epsilon >= 1, selection_tolerance >= 0, "
             "signature_guidance >= 0, eigenfunction_guidance >= 0, stretch_weight >= 0, "
-            "stiffness_candidates >= 1, contenders >= 1, contender_tolerance >= 0 and "
-            "guidance_candidates in [1, 8]");
+            "stiffness_candidates >= 1, contenders >= 1, contender_tolerance >= 0, "
+            "guidance_candidates in [1, 8], refinement_guidances in [0, 8] and "
+            "refinement_iterations >= 0");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -563,13 +566,71 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                         moved_embedding(level.embedding, best_start));
     };
 
+    // The next finer level's flows (MatchOptions::refinement_guidances): the plain one, and
+    // those first guided by the eigenfunctions carried over by the map the coarsest result
+    // implies, side by side; the result whose coarsest vertices disagree least is kept.
+    const Eigen::MatrixX3d coarsest_deformed = best.mesh.V;
+    const auto refine = [&](int l, const TriangleMesh& moved) {
+        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const PointDescriptors descriptors = spectral->eigenfunction_descriptors(
+            coarsest_deformed, level.template_mesh.V, level.target.V,
+            options.eigenfunction_guidance * diagonal);
+        std::vector<FlowResult> flows(static_cast<std::size_t>(options.refinement_guidances) + 1);
+        run_side_by_side(flows.size(), [&](std::size_t k) {
+            if (k == 0) {
+                flows[k] = flow_level(l, moved, options.fine_iterations, best_start, options.prior);
+                return;
+            }
+            const double factor = std::ldexp(1.0, 1 - static_cast<int>(k));  // 1, 1/2, ...
+            const FlowResult guided_flow =
+                flow_level(l, moved, options.refinement_iterations, best_start, options.prior,
+                           {factor * descriptors.moving, factor * descriptors.fixed},
+                           result.stretch_weight, false);
+            flows[k] = flow_level(l, guided_flow.mesh, options.fine_iterations, best_start,
+                                  options.prior, {}, 0, false);
+            flows[k].steps += guided_flow.steps;
+        });
+        // The coarsest template's vertices are a subset of this level's.
+        std::vector<Eigen::Index> level_vertex(static_cast<std::size_t>(template_mesh.V.rows()));
+        for (std::size_t v = 0; v < level.original_vertex.size(); ++v) {
+            level_vertex[static_cast<std::size_t>(level.original_vertex[v])] =
+                static_cast<Eigen::Index>(v);
+        }
+        Eigen::MatrixX3d on_coarsest(coarsest.template_mesh.V.rows(), 3);
+        std::size_t kept = 0;
+        double lowest = 0;
+        int steps = 0;
+        for (std::size_t k = 0; k < flows.size(); ++k) {
+            steps += flows[k].steps;
+            for (Eigen::Index c = 0; c < on_coarsest.rows(); ++c) {
+                on_coarsest.row(c) = flows[k].mesh.V.row(level_vertex[static_cast<std::size_t>(
+                    coarsest.original_vertex[static_cast<std::size_t>(c)])]);
+            }
+            const double value = disagreement(*spectral, on_coarsest);
+            if (k == 0 || (!cancelled && value < lowest)) {
+                lowest = value;
+                kept = k;
+            }
+        }
+        result.refinement_guidance =
+            kept == 0 ? 0 : std::ldexp(options.eigenfunction_guidance, 1 - static_cast<int>(kept));
+        FlowResult flow = std::move(flows[kept]);
+        flow.steps = steps;
+        flow.energy.front() = distance_to_target(level, 1, {}).value(moved);
+        return flow;
+    };
+
     // Finer levels: transfer, then a short flow.
+    const bool refines =
+        guided && options.eigenfunction_guidance > 0 && options.refinement_guidances > 0;
     TriangleMesh current = std::move(best.mesh);
     for (int l = count - 2; l >= 0 && !cancelled; --l) {
         clock = std::chrono::steady_clock::now();
         const Level& level = pyramid[static_cast<std::size_t>(l)];
         const TriangleMesh moved = carry_to(l, current.V);
-        FlowResult flow = flow_level(l, moved, options.fine_iterations, best_start, options.prior);
+        FlowResult flow = refines && l == count - 2 ? refine(l, moved)
+                                                    : flow_level(l, moved, options.fine_iterations,
+                                                                 best_start, options.prior);
         result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));
         current = std::move(flow.mesh);
     }

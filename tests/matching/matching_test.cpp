@@ -580,6 +580,46 @@ TEST(Match, StiffnessAndGuidanceCandidatesKeepOneAndReportIt) {
     }
 }
 
+// The second coarsest level's refining flows, guided by the eigenfunctions, leave the coarsest
+// level as it was; their steps are counted, the kept guidance is one of those tried (or none,
+// and then the level is the plain flow's), and the match is as good on the bent limb.
+TEST(Match, RefinementKeepsOneFlowOfTheNextLevelAndReportsIt) {
+    const BentLimbPair pair;
+    MatchOptions options;
+    options.align = false;
+    options.levels = 2;
+    options.stiffness_candidates = 1;
+    options.guidance_candidates = 1;
+    options.refinement_guidances = 0;
+    const MatchResult plain = match(pair.template_mesh, pair.target, options);
+    EXPECT_EQ(plain.refinement_guidance, 0);
+    options.refinement_guidances = 2;
+    const MatchResult refined = match(pair.template_mesh, pair.target, options);
+    std::printf("kept refinement guidance %.3g, error %.4f -> %.4f\n", refined.refinement_guidance,
+                pair.error(plain), pair.error(refined));
+    ASSERT_EQ(plain.levels.size(), 2U);
+    ASSERT_EQ(refined.levels.size(), 2U);
+    EXPECT_DOUBLE_EQ(refined.levels[0].energy_end, plain.levels[0].energy_end);
+    EXPECT_DOUBLE_EQ(refined.levels[1].energy_start, plain.levels[1].energy_start);
+    EXPECT_GT(refined.levels[1].iterations, 3 * plain.levels[1].iterations / 2);
+    const double g = options.eigenfunction_guidance;
+    EXPECT_TRUE(refined.refinement_guidance == 0 || refined.refinement_guidance == g ||
+                refined.refinement_guidance == g / 2)
+        << refined.refinement_guidance;
+    if (refined.refinement_guidance == 0) {
+        EXPECT_LT((refined.deformed.V - plain.deformed.V).cwiseAbs().maxCoeff(),
+                  1e-6 * pair.diagonal);
+    }
+    EXPECT_LT(pair.error(refined), 1.2 * pair.error(plain) + 1e-3);
+    for (const int wrong : {-1, 9}) {
+        options.refinement_guidances = wrong;
+        EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
+    }
+    options.refinement_guidances = 2;
+    options.refinement_iterations = -1;
+    EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
+}
+
 // The independent coarsest flows run side by side, but the progress callback sees one flow
 // at a time; returning false stops them all, and the match still returns the whole template.
 TEST(Match, ProgressSeesOneFlowAtATimeAndStopsThemAll) {

@@ -198,6 +198,20 @@ struct MatchOptions {
     /// threads: 0.4–0.6 s more on two cores (1–3 s one after the other). (A softer candidate,
     /// 0.025, won the criterion on the arm and lost 0.2 % there.)
     int stiffness_candidates = 3;
+    /// The coarsest level is small (a few hundred vertices: 471 on the TOSCA cat), and where it
+    /// puts the template along the target's surface fixes most of the final error: the finer
+    /// levels' flows on d_H cannot see tangential sliding (0 fine steps instead of 15 changes
+    /// the mean error by 0.1 %). So the next finer level is refined as the coarsest was: the
+    /// functional map is estimated once more from the coarsest result and, for each of
+    /// eigenfunction_guidance × 2^-j, j < refinement_guidances, that level flows
+    /// `refinement_iterations` steps on the d_H augmented with the eigenfunctions (and the kept
+    /// stretch weight) before its plain flow; of those results and the plain flow alone, the
+    /// one whose coarsest vertices disagree least with the target intrinsically is kept
+    /// (guided h1 and articulated matches with eigenfunction_guidance only; 0 turns this off).
+    /// The refining flows run side by side. Measured on the 12 pairs of $GENFLOW_DATA (h1,
+    /// mean error): see docs/eval/results.md.
+    int refinement_guidances = 2;
+    int refinement_iterations = 50;
     RigidAlignmentOptions alignment;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
@@ -241,6 +255,9 @@ struct MatchResult {
     /// The eigenfunction guidance of the kept last round (MatchOptions::guidance_candidates);
     /// 0 without it.
     double eigenfunction_guidance = 0;
+    /// The eigenfunction guidance of the kept refining flow of the second coarsest level
+    /// (MatchOptions::refinement_guidances); 0 when its plain flow was kept or none ran.
+    double refinement_guidance = 0;
     double alignment_seconds = 0;
     double seconds = 0;  ///< everything
     /// True if the finest level's flow stopped on its own (stagnation or no descent left).
