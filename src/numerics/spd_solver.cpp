@@ -14,9 +14,14 @@
 
 namespace genflow::detail {
 
+#ifdef GENFLOW_HAS_CHOLMOD
+// Below this many rows the factorization is simplicial, above it as CHOLMOD decides.
+constexpr Eigen::Index kSimplicialRows = 60000;
+#endif
+
 struct SpdSolver::Impl {
 #ifdef GENFLOW_HAS_CHOLMOD
-    // Supernodal or simplicial as CHOLMOD decides (CHOLMOD_AUTO), LLᵀ.
+    // LLᵀ, simplicial on small systems (kSimplicialRows).
     Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
 #else
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
@@ -60,6 +65,17 @@ void SpdSolver::compute(const Eigen::SparseMatrix<double>& A, const char* caller
     Eigen::SparseMatrix<double> compressed = A;
     compressed.makeCompressed();
     if (!impl_->same_pattern(compressed)) {
+#ifdef GENFLOW_HAS_CHOLMOD
+        // CHOLMOD chooses the supernodal factorization by its flop count alone, but that one
+        // hands many small blocks to the BLAS, whose threads then contend with the flows run
+        // side by side (a quarter of the generated limb's match spent spinning in OpenBLAS).
+        // Measured on whole matches (2 cores): simplicial is faster up to 52K rows (h1 michael's
+        // 52.6K-vertex level 3.2 -> 2.3 s, the quasi-isometric 39K-row one 1.3 -> 1.0 s, the
+        // limb's match 9.5 -> 7.3 s), supernodal from 84K (quasi-isometric cat 2.6 against
+        // 3.5 s, michael's 158K rows 5.1 against 7.1 s).
+        impl_->solver.setMode(compressed.rows() < kSimplicialRows ? Eigen::CholmodSimplicialLLt
+                                                                  : Eigen::CholmodAuto);
+#endif
         impl_->solver.analyzePattern(compressed);
         impl_->rows = compressed.rows();
         impl_->outer.assign(compressed.outerIndexPtr(),
