@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// The sparse SPD solver facade on the H1 matrix M + K of a sphere, on both sides of the size
+// where it changes factorization (simplicial below 60,000 rows, CHOLMOD's choice above).
+#include "numerics/spd_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "genflow/exceptions.h"
+#include "genflow/mesh/primitives.h"
+#include "genflow/operators/cotan_stiffness.h"
+#include "genflow/operators/mass_matrix.h"
+
+namespace genflow {
+namespace {
+
+// M + K of an icosphere of `level`, repeated `copies` times along the diagonal.
+Eigen::SparseMatrix<double> sphere_h1_matrix(int level, int copies) {
+    const TriangleMesh sphere = make_icosphere(level);
+    const Eigen::SparseMatrix<double> block =
+        mass_matrix(sphere, MassType::Full) + cotan_stiffness(sphere);
+    const Eigen::Index n = block.rows();
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int c = 0; c < copies; ++c) {
+        for (Eigen::Index k = 0; k < block.outerSize(); ++k) {
+            for (Eigen::SparseMatrix<double>::InnerIterator it(block, k); it; ++it) {
+                entries.emplace_back(c * n + it.row(), c * n + it.col(), it.value());
+            }
+        }
+    }
+    Eigen::SparseMatrix<double> A(copies * n, copies * n);
+    A.setFromTriplets(entries.begin(), entries.end());
+    return A;
+}
+
+void expect_solves(const Eigen::SparseMatrix<double>& A) {
+    detail::SpdSolver solver;
+    solver.compute(A, "test");
+    const Eigen::MatrixXd X_true = Eigen::MatrixXd::Random(A.rows(), 3);
+    const Eigen::MatrixXd B = A * X_true;
+    Eigen::MatrixXd X = solver.solve(B);
+    EXPECT_LT((X - X_true).norm(), 1e-8 * X_true.norm()) << A.rows();
+    // A new matrix of the same pattern is factored without a new symbolic analysis.
+    const Eigen::SparseMatrix<double> twice = 2 * A;
+    solver.compute(twice, "test");
+    X = solver.solve(B);
+    EXPECT_LT((2 * X - X_true).norm(), 1e-8 * X_true.norm()) << A.rows();
+    EXPECT_EQ(solver.analyses(), 1);
+    // An indefinite one is refused.
+    Eigen::SparseMatrix<double> indefinite = A;
+    indefinite.coeffRef(A.rows() / 2, A.rows() / 2) = -1;
+    EXPECT_THROW(solver.compute(indefinite, "test"), SolverError);
+    EXPECT_THROW((void)solver.solve(B.topRows(10)), InvalidInput);
+}
+
+TEST(SpdSolver, SolvesSmallAndLargeSystemsAndRefusesIndefiniteOnes) {
+    expect_solves(sphere_h1_matrix(3, 1));  // 642 rows
+    expect_solves(sphere_h1_matrix(6, 2));  // 81,924 rows
+}
+
+}  // namespace
+}  // namespace genflow
