@@ -210,6 +210,29 @@ void run_side_by_side(std::size_t count, const Task& task) {
     }
 }
 
+// Of flows run side by side, the one whose result `rate` rates lowest, its rating, and the
+// steps of them all. Once cancelled, the first (the one that reported): the others may have
+// stopped anywhere.
+struct KeptFlow {
+    std::size_t index = 0;
+    double rating = 0;
+    int steps = 0;
+};
+template <class Rate>
+KeptFlow keep_lowest(const std::vector<FlowResult>& flows, const std::atomic<bool>& cancelled,
+                     const Rate& rate) {
+    KeptFlow kept;
+    for (std::size_t k = 0; k < flows.size(); ++k) {
+        kept.steps += flows[k].steps;
+        const double value = rate(flows[k]);
+        if (k == 0 || (!cancelled && value < kept.rating)) {
+            kept.rating = value;
+            kept.index = k;
+        }
+    }
+    return kept;
+}
+
 // How far a placement of the coarsest template disagrees with the target intrinsically: the
 // median signature discrepancy, divided by the map's consistency with the eigenbases.
 double disagreement(const detail::SpectralDescriptors& spectral, const Eigen::MatrixX3d& deformed) {
@@ -470,21 +493,16 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                             flows[t] = std::move(settled);
                         }
                     });
+                    const KeptFlow kept =
+                        keep_lowest(flows, cancelled, [&](const FlowResult& flow) {
+                            return disagreement(*spectral, flow.mesh.V);
+                        });
                     GuidedMatch outcome;
-                    std::size_t kept = 0;
-                    int steps = first_steps;
-                    for (std::size_t t = 0; t < flows.size(); ++t) {
-                        steps += flows[t].steps;
-                        const double value = disagreement(*spectral, flows[t].mesh.V);
-                        if (t == 0 || (!cancelled && value < outcome.disagreement)) {
-                            outcome.disagreement = value;
-                            kept = t;
-                        }
-                    }
-                    outcome.flow = std::move(flows[kept]);
-                    outcome.flow.steps = steps;
-                    outcome.stretch_weight = weight(kept);
-                    outcome.eigenfunction_guidance = guidances[kept / stiffnesses].second;
+                    outcome.flow = std::move(flows[kept.index]);
+                    outcome.flow.steps = first_steps + kept.steps;
+                    outcome.stretch_weight = weight(kept.index);
+                    outcome.eigenfunction_guidance = guidances[kept.index / stiffnesses].second;
+                    outcome.disagreement = kept.rating;
                     return outcome;
                 };
             // The stretching energy joins the last round only: the first one serves to estimate
@@ -575,16 +593,17 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         const PointDescriptors descriptors = spectral->eigenfunction_descriptors(
             coarsest_deformed, level.template_mesh.V, level.target.V,
             options.eigenfunction_guidance * diagonal);
+        // Flow k > 0 is guided at eigenfunction_guidance × 2^(1-k): 1, 1/2, ...
+        const auto factor = [](std::size_t k) { return std::ldexp(1.0, 1 - static_cast<int>(k)); };
         std::vector<FlowResult> flows(static_cast<std::size_t>(options.refinement_guidances) + 1);
         run_side_by_side(flows.size(), [&](std::size_t k) {
             if (k == 0) {
                 flows[k] = flow_level(l, moved, options.fine_iterations, best_start, options.prior);
                 return;
             }
-            const double factor = std::ldexp(1.0, 1 - static_cast<int>(k));  // 1, 1/2, ...
             const FlowResult guided_flow =
                 flow_level(l, moved, options.refinement_iterations, best_start, options.prior,
-                           {factor * descriptors.moving, factor * descriptors.fixed},
+                           {factor(k) * descriptors.moving, factor(k) * descriptors.fixed},
                            result.stretch_weight, false);
             flows[k] = flow_level(l, guided_flow.mesh, options.fine_iterations, best_start,
                                   options.prior, {}, 0, false);
@@ -597,26 +616,20 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 static_cast<Eigen::Index>(v);
         }
         Eigen::MatrixX3d on_coarsest(coarsest.template_mesh.V.rows(), 3);
-        std::size_t kept = 0;
-        double lowest = 0;
-        int steps = 0;
-        for (std::size_t k = 0; k < flows.size(); ++k) {
-            steps += flows[k].steps;
+        const KeptFlow kept = keep_lowest(flows, cancelled, [&](const FlowResult& flow) {
             for (Eigen::Index c = 0; c < on_coarsest.rows(); ++c) {
-                on_coarsest.row(c) = flows[k].mesh.V.row(level_vertex[static_cast<std::size_t>(
+                on_coarsest.row(c) = flow.mesh.V.row(level_vertex[static_cast<std::size_t>(
                     coarsest.original_vertex[static_cast<std::size_t>(c)])]);
             }
-            const double value = disagreement(*spectral, on_coarsest);
-            if (k == 0 || (!cancelled && value < lowest)) {
-                lowest = value;
-                kept = k;
-            }
-        }
+            return disagreement(*spectral, on_coarsest);
+        });
         result.refinement_guidance =
-            kept == 0 ? 0 : std::ldexp(options.eigenfunction_guidance, 1 - static_cast<int>(kept));
-        FlowResult flow = std::move(flows[kept]);
-        flow.steps = steps;
-        flow.energy.front() = distance_to_target(level, 1, {}).value(moved);
+            kept.index == 0 ? 0 : factor(kept.index) * options.eigenfunction_guidance;
+        // The level reports the plain d_H from `moved` on: where the plain flow started.
+        const double start_distance = flows[0].energy.front();
+        FlowResult flow = std::move(flows[kept.index]);
+        flow.steps = kept.steps;
+        flow.energy.front() = start_distance;
         return flow;
     };
 

@@ -53,6 +53,17 @@ struct BentLimbPair {
     [[nodiscard]] double error(const MatchResult& result) const { return error(result.deformed.V); }
 };
 
+// Options for matching the bent limb as given (no global alignment) with one candidate of the
+// last guided round: fewer flows to wait for where a test is about something else (the
+// candidates have Match.StiffnessAndGuidanceCandidatesKeepOneAndReportIt).
+MatchOptions one_candidate_options() {
+    MatchOptions options;
+    options.align = false;
+    options.stiffness_candidates = 1;
+    options.guidance_candidates = 1;
+    return options;
+}
+
 void expect_strictly_decreasing(const std::vector<double>& energy) {
     for (std::size_t k = 1; k < energy.size(); ++k) {
         EXPECT_LT(energy[k], energy[k - 1]) << k;
@@ -294,11 +305,8 @@ TEST(Match, CarriesTheCoarseMatchToTheInputResolution) {
 
 TEST(Match, ArticulatedPriorFollowsABendTheRigidPriorCannot) {
     const BentLimbPair pair;
-    MatchOptions options;
+    MatchOptions options = one_candidate_options();
     options.prior = MatchPrior::Articulated;
-    options.align = false;
-    options.stiffness_candidates = 1;  // Match.StiffnessAndGuidanceCandidates...
-    options.guidance_candidates = 1;
     options.parts = two_part_arm(pair.template_mesh);
     const MatchResult articulated = match(pair.template_mesh, pair.target, options);
     options.prior = MatchPrior::Rigid;
@@ -348,10 +356,7 @@ TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
 // own d_H, from the same start as without the schedule, and it still ends on the target.
 TEST(Match, EpsilonScheduleEndsOnTheTargetAndReportsTheLevelsOwnDistance) {
     const BentLimbPair pair;
-    MatchOptions options;
-    options.align = false;
-    options.stiffness_candidates = 1;  // fewer flows to wait for; the schedule is the same
-    options.guidance_candidates = 1;
+    MatchOptions options = one_candidate_options();
     const MatchResult plain = match(pair.template_mesh, pair.target, options);
     options.coarse_epsilon = 3;
     const MatchResult scheduled = match(pair.template_mesh, pair.target, options);
@@ -494,10 +499,7 @@ TEST(SpectralDescriptors, EigenfunctionsFollowTheMajorityOfACorrespondence) {
 // on the bent limb.
 TEST(Match, GuidanceReportsThePlainDistanceAndMatchesTheLimb) {
     const BentLimbPair pair;
-    MatchOptions options;
-    options.align = false;
-    options.stiffness_candidates = 1;  // Match.StiffnessAndGuidanceCandidates...
-    options.guidance_candidates = 1;
+    MatchOptions options = one_candidate_options();
     options.signature_guidance = 0;
     const MatchResult plain = match(pair.template_mesh, pair.target, options);
     options.signature_guidance = 0.1;
@@ -521,10 +523,7 @@ TEST(Match, GuidanceReportsThePlainDistanceAndMatchesTheLimb) {
 // lengths, which d_H alone leaves free to slide, and the match at least as close to the truth.
 TEST(Match, StretchingEnergyKeepsEdgeLengthsAndTheMatch) {
     const BentLimbPair pair;
-    MatchOptions options;
-    options.align = false;
-    options.stiffness_candidates = 1;
-    options.guidance_candidates = 1;
+    MatchOptions options = one_candidate_options();
     options.stretch_weight = 0;
     const MatchResult free = match(pair.template_mesh, pair.target, options);
     options.stretch_weight = 0.1;
@@ -549,10 +548,7 @@ TEST(Match, StretchingEnergyKeepsEdgeLengthsAndTheMatch) {
 // limb, and says which.
 TEST(Match, StiffnessAndGuidanceCandidatesKeepOneAndReportIt) {
     const BentLimbPair pair;
-    MatchOptions options;
-    options.align = false;
-    options.stiffness_candidates = 1;
-    options.guidance_candidates = 1;
+    MatchOptions options = one_candidate_options();
     const MatchResult single = match(pair.template_mesh, pair.target, options);
     EXPECT_DOUBLE_EQ(single.stretch_weight, options.stretch_weight);
     EXPECT_DOUBLE_EQ(single.eigenfunction_guidance, options.eigenfunction_guidance);
@@ -585,11 +581,8 @@ TEST(Match, StiffnessAndGuidanceCandidatesKeepOneAndReportIt) {
 // and then the level is the plain flow's), and the match is as good on the bent limb.
 TEST(Match, RefinementKeepsOneFlowOfTheNextLevelAndReportsIt) {
     const BentLimbPair pair;
-    MatchOptions options;
-    options.align = false;
+    MatchOptions options = one_candidate_options();
     options.levels = 2;
-    options.stiffness_candidates = 1;
-    options.guidance_candidates = 1;
     options.refinement_guidances = 0;
     const MatchResult plain = match(pair.template_mesh, pair.target, options);
     EXPECT_EQ(plain.refinement_guidance, 0);
