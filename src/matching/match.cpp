@@ -421,16 +421,17 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     std::vector<std::size_t> contenders{0};  // the starts the guided rounds decide between
     FlowResult best;
     const int selection_steps = std::min(options.selection_iterations, options.max_iterations);
+    std::vector<FlowResult> selection_flows;  // one per start, with several starts
     if (several_starts) {
-        std::vector<FlowResult> flows(starts.size());
+        selection_flows.resize(starts.size());
         run_side_by_side(starts.size(), [&](std::size_t k) {
-            flows[k] = flow_level(count - 1, placed(starts[k]), selection_steps, starts[k],
-                                  MatchPrior::H1, {}, 0, k == 0);
+            selection_flows[k] = flow_level(count - 1, placed(starts[k]), selection_steps,
+                                            starts[k], MatchPrior::H1, {}, 0, k == 0);
         });
-        contenders = choose_starts(flows, *spectral, options.selection_tolerance,
+        contenders = choose_starts(selection_flows, *spectral, options.selection_tolerance,
                                    options.contender_tolerance, options.contenders);
         chosen = contenders.front();
-        best = std::move(flows[chosen]);
+        best = selection_flows[chosen];
     }
     if (cancelled) {
         // Keep the selection flow's result.
@@ -515,8 +516,14 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 } else {
                     // The descriptors' spread is their weight: the map is estimated once and
                     // the stronger guidances are its descriptors scaled (2^j, exactly).
+                    // The map is estimated from this match and from the start's selection
+                    // flow; SpectralDescriptors keeps the best of the maps ZoomOut finds.
+                    std::vector<Eigen::MatrixX3d> placements{first.mesh.V};
+                    if (several_starts) {
+                        placements.push_back(selection_flows[s].mesh.V);
+                    }
                     const PointDescriptors descriptors = spectral->eigenfunction_descriptors(
-                        first.mesh.V, coarsest.template_mesh.V, coarsest.target.V,
+                        placements, coarsest.template_mesh.V, coarsest.target.V,
                         options.eigenfunction_guidance * diagonal);
                     std::vector<std::pair<PointDescriptors, double>> guidances;
                     for (int j = 0; j < options.guidance_candidates; ++j) {
@@ -591,7 +598,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     const auto refine = [&](int l, const TriangleMesh& moved) {
         const Level& level = pyramid[static_cast<std::size_t>(l)];
         const PointDescriptors descriptors = spectral->eigenfunction_descriptors(
-            coarsest_deformed, level.template_mesh.V, level.target.V,
+            {coarsest_deformed}, level.template_mesh.V, level.target.V,
             options.eigenfunction_guidance * diagonal);
         // Flow k > 0 is guided at eigenfunction_guidance × 2^(1-k): 1, 1/2, ...
         const auto factor = [](std::size_t k) { return std::ldexp(1.0, 1 - static_cast<int>(k)); };

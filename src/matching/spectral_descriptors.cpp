@@ -3,6 +3,7 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -17,6 +18,9 @@ namespace {
 
 // Enough for eigenfunction_descriptors() to choose from.
 constexpr Eigen::Index kKeptFunctions = 64;
+
+// The sizes ZoomOut starts from (SpectralDescriptors::eigenfunction_descriptors()).
+constexpr std::array<Eigen::Index, 4> kZoomOutFirstSizes{4, 6, 8, 10};
 
 // What the spectral view keeps of one coarse mesh, for its vertices with area (those without
 // have no signature and no eigenfunction values).
@@ -69,6 +73,12 @@ Eigen::MatrixXd fitted_functional_map(const Eigen::MatrixXd& template_functions,
            target_functions(correspondence, Eigen::seqN(0, size));
 }
 
+// 1 for an orthogonal map; lower as the map loses functions (SpectralDescriptors::
+// map_consistency()).
+double mean_singular_value(const Eigen::MatrixXd& map) {
+    return Eigen::JacobiSVD<Eigen::MatrixXd>(map).singularValues().mean();
+}
+
 }  // namespace
 
 SpectralDescriptors::SpectralDescriptors(const TriangleMesh& template_mesh,
@@ -87,7 +97,8 @@ SpectralDescriptors::SpectralDescriptors(const TriangleMesh& template_mesh,
         template_vertex_.push_back(coarse_template.fine_vertex[static_cast<std::size_t>(k)]);
     }
     template_points_ = PointIndex(template_mesh.V(template_vertex_, Eigen::all));
-    target_points_ = PointIndex(coarse_target.mesh.V(to.vertex, Eigen::all));
+    target_positions_ = coarse_target.mesh.V(to.vertex, Eigen::all);
+    target_points_ = PointIndex(target_positions_);
     template_log_signature_ = std::move(from.log_signature);
     target_log_signature_ = std::move(to.log_signature);
     template_functions_ = std::move(from.functions);
@@ -131,11 +142,8 @@ Eigen::Index SpectralDescriptors::function_count(int functions) const {
 double SpectralDescriptors::map_consistency(const Eigen::MatrixX3d& deformed, int functions) const {
     const std::vector<Eigen::Index> correspondence = nearest_target_rows(deformed);
     const Eigen::Index count = function_count(functions);
-    return Eigen::JacobiSVD<Eigen::MatrixXd>(
-               fitted_functional_map(template_functions_, template_masses_, target_functions_,
-                                     correspondence, count))
-        .singularValues()
-        .mean();
+    return mean_singular_value(fitted_functional_map(template_functions_, template_masses_,
+                                                     target_functions_, correspondence, count));
 }
 
 namespace {
@@ -169,31 +177,80 @@ PointDescriptors SpectralDescriptors::signature_descriptors(const Eigen::MatrixX
             at_nearest(target_points, target_points_, normalized(target_log_signature_))};
 }
 
-PointDescriptors SpectralDescriptors::eigenfunction_descriptors(
-    const Eigen::MatrixX3d& deformed, const Eigen::MatrixX3d& template_points,
-    const Eigen::MatrixX3d& target_points, double length, int functions) const {
-    std::vector<Eigen::Index> correspondence = nearest_target_rows(deformed);
-    const Eigen::Index count = function_count(functions);
-    // Smooth over parts: ψ_k / √λ_k (with a floor, for meshes of several components).
-    const Eigen::ArrayXd values = target_values_.head(count).array();
-    const Eigen::RowVectorXd weight =
-        values.max(1e-3 * values.maxCoeff()).rsqrt().matrix().transpose();
-    const auto fitted_map = [&](Eigen::Index size) {
-        return fitted_functional_map(template_functions_, template_masses_, target_functions_,
-                                     correspondence, size);
-    };
-    constexpr Eigen::Index kFirstFunctions = 6;
-    for (Eigen::Index size = std::min(kFirstFunctions, count); size <= count; ++size) {
-        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(fitted_map(size),
-                                                    Eigen::ComputeFullU | Eigen::ComputeFullV);
+std::vector<Eigen::Index> SpectralDescriptors::zoom_out(std::vector<Eigen::Index> correspondence,
+                                                        Eigen::Index first,
+                                                        Eigen::Index count) const {
+    const Eigen::RowVectorXd weight = function_weights(count);
+    for (Eigen::Index size = std::min(first, count); size <= count; ++size) {
+        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
+            fitted_functional_map(template_functions_, template_masses_, target_functions_,
+                                  correspondence, size),
+            Eigen::ComputeFullU | Eigen::ComputeFullV);
         const Eigen::MatrixXd orthogonal = svd.matrixU() * svd.matrixV().transpose();
         const auto scaled = weight.head(size).asDiagonal();
         correspondence = nearest_rows(template_functions_.leftCols(size) * orthogonal * scaled,
                                       target_functions_.leftCols(size) * scaled);
     }
+    return correspondence;
+}
+
+Eigen::RowVectorXd SpectralDescriptors::function_weights(Eigen::Index count) const {
+    // Smooth over parts: ψ_k / √λ_k (with a floor, for meshes of several components).
+    const Eigen::ArrayXd values = target_values_.head(count).array();
+    return values.max(1e-3 * values.maxCoeff()).rsqrt().matrix().transpose();
+}
+
+PointDescriptors SpectralDescriptors::eigenfunction_descriptors(
+    const std::vector<Eigen::MatrixX3d>& placements, const Eigen::MatrixX3d& template_points,
+    const Eigen::MatrixX3d& target_points, double length, int functions) const {
+    if (placements.empty()) {
+        throw InvalidInput("SpectralDescriptors: no placement to estimate the map from");
+    }
+    const Eigen::Index count = function_count(functions);
+    struct Candidate {
+        Eigen::MatrixXd map;
+        double singular_value = 0;
+        double moved = 0;  // summed distance between where the placement and the map put points
+    };
+    std::vector<Candidate> candidates;
+    for (const Eigen::MatrixX3d& deformed : placements) {
+        const std::vector<Eigen::Index> start = nearest_target_rows(deformed);
+        for (const Eigen::Index first : kZoomOutFirstSizes) {
+            const std::vector<Eigen::Index> end = zoom_out(start, first, count);
+            Candidate candidate;
+            candidate.map = fitted_functional_map(template_functions_, template_masses_,
+                                                  target_functions_, end, count);
+            candidate.singular_value = mean_singular_value(candidate.map);
+            for (std::size_t k = 0; k < end.size(); ++k) {
+                candidate.moved +=
+                    (target_positions_.row(end[k]) - target_positions_.row(start[k])).norm();
+            }
+            candidates.push_back(std::move(candidate));
+        }
+    }
+    // Equally orthogonal maps differ by a symmetry of the shape (the generated limb's flipped
+    // map was 0.005 more orthogonal and moved the points three times as far): each map is
+    // rated by its mean singular value minus how far it moves the placement's points, as a
+    // fraction of the diagonal.
+    const Eigen::Index points = static_cast<Eigen::Index>(template_vertex_.size());
+    const double per_point =
+        1 /
+        (static_cast<double>(points) *
+         (target_positions_.colwise().maxCoeff() - target_positions_.colwise().minCoeff()).norm());
+    const auto rating = [&](const Candidate& candidate) {
+        return candidate.singular_value - per_point * candidate.moved;
+    };
+    const Candidate* kept = &candidates.front();
+    for (const Candidate& candidate : candidates) {
+        if (rating(candidate) > rating(*kept)) {
+            kept = &candidate;
+        }
+    }
+    const Eigen::MatrixXd& best_map = kept->map;
+    const Eigen::RowVectorXd weight = function_weights(count);
     const Eigen::MatrixXd target = target_functions_.leftCols(count) * weight.asDiagonal();
     const Eigen::MatrixXd mapped =
-        template_functions_.leftCols(count) * fitted_map(count) * weight.asDiagonal();
+        template_functions_.leftCols(count) * best_map * weight.asDiagonal();
     const double spread = std::sqrt((target.rowwise() - target.colwise().mean()).squaredNorm() /
                                     static_cast<double>(target.rows()));
     const double scale = spread > 0 ? length / spread : 0;

@@ -68,18 +68,32 @@ public:
     /// ψ, and the template's φ carried over by a functional map C (φ C ≈ ψ at corresponding
     /// points), each divided by √λ (the low ones vary smoothly over whole parts; the high ones
     /// are noisier and, on coarse meshes, may not correspond at all). C is estimated from the
-    /// correspondence of `deformed` (each template point with the target point nearest to
-    /// where it was put) and refined as in ZoomOut (Melzi et al. 2019): from 6 functions up to
-    /// `functions`, C is fitted to the correspondence and made orthogonal (a near-isometry keeps
-    /// the basis orthonormal), and the correspondence becomes that of nearest neighbours in the
-    /// (√λ-divided) embedding. The orthogonal fit follows the majority: a limb on the wrong side
-    /// is outvoted by the rest of the shape. The descriptors are scaled so that the target's
-    /// root-mean-square spread is `length`. (Measured, full pairs of $GENFLOW_DATA, h1: nearest
-    /// neighbours in the undivided embedding broke the makehuman body's map from 12 functions
-    /// on, 1.9 → 2.7 % mean error; divided, 16, 20 and 24 functions give 1.2, 1.1 and 1.0 %.)
-    /// \throws InvalidInput if `deformed` does not have the template's vertex count.
+    /// correspondence of a placement (each template point with the target point nearest to
+    /// where it was put) and refined as in ZoomOut (Melzi et al. 2019): from a few functions up
+    /// to `functions`, C is fitted to the correspondence and made orthogonal (a near-isometry
+    /// keeps the basis orthonormal), and the correspondence becomes that of nearest neighbours
+    /// in the (√λ-divided) embedding. The orthogonal fit follows the majority: a limb on the
+    /// wrong side is outvoted by the rest of the shape. The descriptors are scaled so that the
+    /// target's root-mean-square spread is `length`. (Measured, full pairs of $GENFLOW_DATA, h1:
+    /// nearest neighbours in the undivided embedding broke the makehuman body's map from 12
+    /// functions on, 1.9 → 2.7 % mean error; divided, 16, 20 and 24 functions give 1.2, 1.1
+    /// and 1.0 %.)
+    ///
+    /// Where ZoomOut ends depends on where it starts: from a correspondence with whole parts
+    /// misplaced it ends either near the right map or near a wrong one (the TOSCA cat's
+    /// coarsest match: 2.5 % or 7–11 % of the diagonal at the template's coarse vertices),
+    /// and which one changed with the start's size and with a vertex more or less in the
+    /// coarse meshes. So it runs from every placement given and from 4, 6, 8 and 10 functions,
+    /// and keeps the map most nearly orthogonal, the highest mean singular value of C fitted to
+    /// its final correspondence (map_consistency(); on the cat 0.87–0.88 for the right maps,
+    /// 0.83–0.85 for the wrong ones), less the mean distance, over the diagonal, by which it
+    /// moves the points of the placement's correspondence (0.08 against 0.11–0.14): a symmetric
+    /// shape has several near-orthogonal maps, and on the generated limb the one flipped about
+    /// it was 0.005 more orthogonal but moved the points 3× as far (0.07 against 0.02–0.03).
+    /// \throws InvalidInput if `placements` is empty or a placement does not have the template's
+    ///         vertex count.
     [[nodiscard]] PointDescriptors eigenfunction_descriptors(
-        const Eigen::MatrixX3d& deformed, const Eigen::MatrixX3d& template_points,
+        const std::vector<Eigen::MatrixX3d>& placements, const Eigen::MatrixX3d& template_points,
         const Eigen::MatrixX3d& target_points, double length, int functions = 20) const;
 
 private:
@@ -87,6 +101,7 @@ private:
     std::vector<Eigen::Index> template_vertex_;  // template vertex of each signature row
     PointIndex template_points_;  // the signature vertices at rest, rows as the signatures
     PointIndex target_points_;
+    Eigen::MatrixX3d target_positions_;  // the points of target_points_, rows as the signatures
     // Rows as the points above.
     Eigen::MatrixXd template_log_signature_;
     Eigen::MatrixXd target_log_signature_;
@@ -97,6 +112,13 @@ private:
 
     // `functions` (at least 1) as far as both meshes have non-constant eigenfunctions.
     [[nodiscard]] Eigen::Index function_count(int functions) const;
+    // ψ_k / √λ_k weights of the `count` lowest functions.
+    [[nodiscard]] Eigen::RowVectorXd function_weights(Eigen::Index count) const;
+    // ZoomOut from `correspondence` (template signature row -> target row): from `first`
+    // functions up to `count`, the map fitted and made orthogonal, the correspondence that of
+    // nearest neighbours in the weighted embedding.
+    [[nodiscard]] std::vector<Eigen::Index> zoom_out(std::vector<Eigen::Index> correspondence,
+                                                     Eigen::Index first, Eigen::Index count) const;
     // The target signature row nearest to where `deformed` puts each template signature row.
     [[nodiscard]] std::vector<Eigen::Index> nearest_target_rows(
         const Eigen::MatrixX3d& deformed) const;

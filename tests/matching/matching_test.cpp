@@ -466,14 +466,14 @@ TEST(SpectralDescriptors, EigenfunctionsFollowTheMajorityOfACorrespondence) {
         return points;
     };
     const PointDescriptors at_truth =
-        spectral.eigenfunction_descriptors(swapped, template_mesh.V, target_at(truth), length);
+        spectral.eigenfunction_descriptors({swapped}, template_mesh.V, target_at(truth), length);
     const PointDescriptors at_swapped =
-        spectral.eigenfunction_descriptors(swapped, template_mesh.V, target_at(swapped), length);
+        spectral.eigenfunction_descriptors({swapped}, template_mesh.V, target_at(swapped), length);
     ASSERT_EQ(at_truth.moving.rows(), template_mesh.V.rows());
     ASSERT_EQ(at_truth.moving.cols(), at_truth.fixed.cols());
     // The target's own points (all 642 are eigenbasis vertices): a spread of `length`.
     const PointDescriptors own =
-        spectral.eigenfunction_descriptors(swapped, template_mesh.V, target.V, length);
+        spectral.eigenfunction_descriptors({swapped}, template_mesh.V, target.V, length);
     const Eigen::MatrixXd centred = own.fixed.rowwise() - own.fixed.colwise().mean();
     EXPECT_NEAR(std::sqrt(centred.rowwise().squaredNorm().mean()), length, 1e-9 * length);
 
@@ -489,9 +489,44 @@ TEST(SpectralDescriptors, EigenfunctionsFollowTheMajorityOfACorrespondence) {
     // Everywhere, the right places agree to a fraction of the spread.
     const double mean_gap = (at_truth.moving - at_truth.fixed).rowwise().norm().mean();
     EXPECT_LT(mean_gap, 0.25 * length) << mean_gap / length;
-    EXPECT_THROW((void)spectral.eigenfunction_descriptors(swapped.topRows(10), template_mesh.V,
+    EXPECT_THROW((void)spectral.eigenfunction_descriptors({swapped.topRows(10)}, template_mesh.V,
                                                           target.V, length),
                  InvalidInput);
+}
+
+// Of several placements, the map is estimated from the one whose ZoomOut map is the most nearly
+// orthogonal: a placement that folds the limb onto one half (every vertex with x > 0 put where
+// its mirror image belongs) loses the functions odd in x, and the right placement wins whatever
+// the order.
+TEST(SpectralDescriptors, EigenfunctionsFollowTheMostIsometricPlacement) {
+    const TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target = make_limb(3, 9);
+    const std::vector<Joint> bend{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}};
+    target.V = bend_at_joints(target.V, bend);
+    const Eigen::MatrixX3d truth = bend_at_joints(template_mesh.V, bend);
+    const double length = 0.1 * bounding_box_diagonal(target);
+    const detail::SpectralDescriptors spectral(template_mesh, target);
+
+    Eigen::MatrixX3d folded = truth;
+    const detail::PointIndex template_points(template_mesh.V);
+    for (Eigen::Index i = 0; i < template_mesh.V.rows(); ++i) {
+        if (template_mesh.V(i, 0) > 0) {
+            const Eigen::Vector3d mirror(-template_mesh.V(i, 0), template_mesh.V(i, 1),
+                                         template_mesh.V(i, 2));
+            folded.row(i) = truth.row(template_points.nearest(mirror).first);
+        }
+    }
+    const auto descriptors = [&](const std::vector<Eigen::MatrixX3d>& placements) {
+        return spectral.eigenfunction_descriptors(placements, template_mesh.V, target.V, length)
+            .moving;
+    };
+    const Eigen::MatrixXd right = descriptors({truth});
+    const Eigen::MatrixXd wrong = descriptors({folded});
+    // The folded placement's map is another one (measured: 1.5 times the spread per vertex).
+    EXPECT_GT((right - wrong).rowwise().norm().mean(), 0.5 * length);
+    EXPECT_EQ(descriptors({folded, truth}), right);
+    EXPECT_EQ(descriptors({truth, folded}), right);
+    EXPECT_THROW((void)descriptors({}), InvalidInput);
 }
 
 // The guidance by the signatures, then by the eigenfunctions, changes only the coarsest level's

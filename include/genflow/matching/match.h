@@ -154,7 +154,13 @@ struct MatchOptions {
     /// its diagonal; 0 turns this second guidance off. Measured on the full pairs of
     /// $GENFLOW_DATA (h1, mean error): TOSCA cat 9.2 → 3.6 %, horse 4.2 → 1.4 %, hand
     /// 5.1 → 3.1 %, centaur 2.4 → 1.2 %, makehuman body 1.9 → 1.1 %, wolf 1.3 → 0.9 % (its paw
-    /// back on its own side), at 0.5–2 s more (docs/eval/results.md).
+    /// back on its own side), at 0.5–2 s more (docs/eval/results.md). The map is estimated
+    /// from the signature-guided match and from the start's selection flow, by ZoomOut from
+    /// several sizes each, keeping the most nearly orthogonal map that moves the placement least
+    /// (detail::SpectralDescriptors::eigenfunction_descriptors()): from one, ZoomOut ended at a
+    /// wrong map on some coarse meshes and not on others one vertex larger (TOSCA cat 2.0–8.9 %
+    /// over six such pyramids, now 1.9–2.0 %; the libigl arm 1.6–3.9 %, now 1.3–2.3 % but
+    /// 3.9 % on one).
     double eigenfunction_guidance = 0.1;
     /// How strongly the eigenfunctions should guide depends on the pair, as the stiffness does
     /// (stiffness_candidates): the last round can also run at eigenfunction_guidance × 2^j for
