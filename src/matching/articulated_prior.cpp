@@ -8,6 +8,7 @@
 #include <string>
 
 #include "genflow/exceptions.h"
+#include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mass_matrix.h"
 #include "genflow/operators/mesh_size.h"
@@ -120,6 +121,9 @@ SubspaceMetric quasi_articulated_metric(const TriangleMesh& rest, const PartMode
             throw InvalidInput("quasi_articulated_metric: penalties must lie in (0, 1]");
         }
     }
+    if (!detail::finite_at_least(options.smoothing_length, 0)) {
+        throw InvalidInput("quasi_articulated_metric: smoothing_length must be finite and >= 0");
+    }
     const Eigen::MatrixXd weights = blend_part_weights(rest, parts.weights, options.blend_edges);
     const auto count = static_cast<int>(parts.parts.size());
     const std::vector<int> depth = part_depths(parts);
@@ -189,7 +193,12 @@ SubspaceMetric quasi_articulated_metric(const TriangleMesh& rest, const PartMode
         }
         return blocks;
     };
-    return SubspaceMetric(basis, {options.mass});
+    std::unique_ptr<Metric> base;
+    if (options.smoothing_length > 0) {
+        const double length = options.smoothing_length * mean_edge_length(rest);
+        base = std::make_unique<H1Metric>(SobolevOptions{.lambda = length * length});
+    }
+    return SubspaceMetric(basis, {options.mass}, std::move(base));
 }
 
 }  // namespace genflow

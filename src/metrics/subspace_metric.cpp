@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "genflow/exceptions.h"
@@ -14,73 +15,48 @@ namespace genflow {
 
 namespace {
 
-// √m_i repeated for the three rows of vertex i.
-Eigen::VectorXd row_sqrt_masses(const Eigen::VectorXd& masses) {
-    Eigen::VectorXd s(3 * masses.size());
+// m_i repeated for the three rows of vertex i.
+Eigen::VectorXd row_masses(const Eigen::VectorXd& masses) {
+    Eigen::VectorXd m(3 * masses.size());
     for (Eigen::Index i = 0; i < masses.size(); ++i) {
-        s.segment<3>(3 * i).setConstant(std::sqrt(masses[i]));
+        m.segment<3>(3 * i).setConstant(masses[i]);
     }
-    return s;
+    return m;
 }
 
-// Block Gram–Schmidt in the M inner product (SPEC.md §6), done on B̃ = M^{1/2} B where it is
-// the plain inner product: each block minus its components along the earlier ones (twice,
-// for round-off), then an eigen-decomposition of its Gram matrix drops the directions
-// already spanned (eigenvalues below 1e-8 of the block's own largest before projection) and
-// orthonormalizes the rest. Returns the Q̃_k = M^{1/2} Q_k.
-std::vector<FieldBlock> orthonormalize(const std::vector<FieldBlock>& blocks,
-                                       const Eigen::VectorXd& sqrt_mass) {
-    std::vector<FieldBlock> result;
-    for (const FieldBlock& block : blocks) {
-        if (block.fields.cols() == 0) {
-            continue;
-        }
-        Eigen::MatrixXd B = block.fields.array().colwise() * sqrt_mass.array();
-        const Eigen::MatrixXd original_gram = B.transpose() * B;
-        const double scale =
-            Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(original_gram, Eigen::EigenvaluesOnly)
-                .eigenvalues()
-                .maxCoeff();
-        if (!(scale > 0)) {
-            continue;
-        }
-        for (int pass = 0; pass < 2; ++pass) {
-            for (const FieldBlock& earlier : result) {
-                B.noalias() -= earlier.fields * (earlier.fields.transpose() * B);
-            }
-        }
-        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(B.transpose() * B);
-        std::vector<Eigen::Index> kept;
-        for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k) {
-            if (eigen.eigenvalues()[k] > 1e-8 * scale) {
-                kept.push_back(k);
-            }
-        }
-        if (kept.empty()) {
-            continue;
-        }
-        Eigen::MatrixXd directions(B.cols(), static_cast<Eigen::Index>(kept.size()));
-        for (std::size_t c = 0; c < kept.size(); ++c) {
-            directions.col(static_cast<Eigen::Index>(c)) =
-                eigen.eigenvectors().col(kept[c]) / std::sqrt(eigen.eigenvalues()[kept[c]]);
-        }
-        result.push_back({B * directions, block.penalty});
+// Each 3n-row column of X as a #V×3 field, `op` applied, and back.
+template <class Op>
+Eigen::MatrixXd column_by_column(const Eigen::MatrixXd& X, const Op& op) {
+    Eigen::MatrixXd result(X.rows(), X.cols());
+    for (Eigen::Index c = 0; c < X.cols(); ++c) {
+        result.col(c) = detail::interleave(op(detail::deinterleave(X.col(c))));
     }
     return result;
 }
 
 }  // namespace
 
-std::vector<FieldBlock> SubspaceMetric::orthonormal_blocks() const {
-    std::vector<FieldBlock> blocks = blocks_;
-    for (FieldBlock& block : blocks) {
-        block.fields = block.fields.array().colwise() / sqrt_mass_.array();
+Eigen::MatrixXd SubspaceMetric::base_times(const Eigen::MatrixXd& X) const {
+    if (!base_) {
+        return X.array().colwise() * row_masses_.array();
     }
-    return blocks;
+    return column_by_column(X, [&](const VertexField& field) { return base_->apply(field); });
 }
 
-SubspaceMetric::SubspaceMetric(FieldBasis basis, SubspaceOptions options)
-    : basis_(std::move(basis)), options_(options) {
+Eigen::VectorXd SubspaceMetric::base_inverse_times(const Eigen::VectorXd& x) const {
+    if (!base_) {
+        return x.cwiseQuotient(row_masses_);
+    }
+    return detail::interleave(base_->gradient(detail::deinterleave(x)));
+}
+
+std::vector<FieldBlock> SubspaceMetric::orthonormal_blocks() const {
+    return blocks_;
+}
+
+SubspaceMetric::SubspaceMetric(FieldBasis basis, SubspaceOptions options,
+                               std::unique_ptr<Metric> base)
+    : basis_(std::move(basis)), options_(options), base_(std::move(base)) {
     if (!basis_) {
         throw InvalidInput("SubspaceMetric: no basis given");
     }
@@ -95,7 +71,7 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
         }
     }
     Eigen::VectorXd masses = detail::floored_lumped_masses(mesh, options_.mass);
-    std::vector<FieldBlock> blocks = basis_(mesh, masses);
+    const std::vector<FieldBlock> blocks = basis_(mesh, masses);
     for (const FieldBlock& block : blocks) {
         if (block.fields.rows() != 3 * mesh.V.rows()) {
             throw InvalidInput("SubspaceMetric::update: a block has " +
@@ -107,31 +83,81 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
                 "SubspaceMetric::update: block fields must be finite and penalties positive");
         }
     }
-    sqrt_mass_ = row_sqrt_masses(masses);
-    blocks_ = orthonormalize(blocks, sqrt_mass_);
+    if (base_) {
+        base_->update(mesh);
+    }
+    row_masses_ = row_masses(masses);
     masses_ = std::move(masses);
+    // Block Gram–Schmidt in the B inner product (SPEC.md §6): each block minus its components
+    // along the earlier ones (twice, for round-off), then an eigen-decomposition of its Gram
+    // matrix drops the directions already spanned (eigenvalues below 1e-8 of the block's own
+    // largest before projection) and orthonormalizes the rest. B F follows F linearly.
+    blocks_.clear();
+    base_blocks_.clear();
+    for (const FieldBlock& block : blocks) {
+        if (block.fields.cols() == 0) {
+            continue;
+        }
+        Eigen::MatrixXd F = block.fields;
+        Eigen::MatrixXd BF = base_times(F);
+        const auto gram = [&] {
+            const Eigen::MatrixXd G = F.transpose() * BF;
+            return Eigen::MatrixXd((G + G.transpose()) / 2);
+        };
+        const double scale =
+            Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram(), Eigen::EigenvaluesOnly)
+                .eigenvalues()
+                .maxCoeff();
+        if (!(scale > 0)) {
+            continue;
+        }
+        for (int pass = 0; pass < 2; ++pass) {
+            for (std::size_t k = 0; k < blocks_.size(); ++k) {
+                const Eigen::MatrixXd along = base_blocks_[k].transpose() * F;
+                F.noalias() -= blocks_[k].fields * along;
+                BF.noalias() -= base_blocks_[k] * along;
+            }
+        }
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram());
+        std::vector<Eigen::Index> kept;
+        for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k) {
+            if (eigen.eigenvalues()[k] > 1e-8 * scale) {
+                kept.push_back(k);
+            }
+        }
+        if (kept.empty()) {
+            continue;
+        }
+        Eigen::MatrixXd directions(F.cols(), static_cast<Eigen::Index>(kept.size()));
+        for (std::size_t c = 0; c < kept.size(); ++c) {
+            directions.col(static_cast<Eigen::Index>(c)) =
+                eigen.eigenvectors().col(kept[c]) / std::sqrt(eigen.eigenvalues()[kept[c]]);
+        }
+        blocks_.push_back({F * directions, block.penalty});
+        base_blocks_.push_back(BF * directions);
+    }
 }
 
 VertexField SubspaceMetric::gradient(const VertexField& dEdX) const {
     detail::require_rows(dEdX, masses_.size(), "SubspaceMetric::gradient");
-    // G⁻¹d = M⁻¹d + Σ (1/μ − 1) M^{-1/2} Q̃ Q̃ᵀ M^{-1/2} d.
-    const Eigen::VectorXd r = detail::interleave(dEdX).cwiseQuotient(sqrt_mass_);
-    Eigen::VectorXd g = r;
+    // G⁻¹d = B⁻¹d + Σ (1/μ − 1) Q Qᵀ d.
+    const Eigen::VectorXd d = detail::interleave(dEdX);
+    Eigen::VectorXd g = base_inverse_times(d);
     for (const FieldBlock& block : blocks_) {
-        g += (1 / block.penalty - 1) * (block.fields * (block.fields.transpose() * r));
+        g += (1 / block.penalty - 1) * (block.fields * (block.fields.transpose() * d));
     }
-    return detail::deinterleave(g.cwiseQuotient(sqrt_mass_));
+    return detail::deinterleave(g);
 }
 
 VertexField SubspaceMetric::apply(const VertexField& U) const {
     detail::require_rows(U, masses_.size(), "SubspaceMetric::apply");
-    // G u = M u + Σ (μ − 1) M^{1/2} Q̃ Q̃ᵀ M^{1/2} u.
-    const Eigen::VectorXd r = detail::interleave(U).cwiseProduct(sqrt_mass_);
-    Eigen::VectorXd result = r;
-    for (const FieldBlock& block : blocks_) {
-        result += (block.penalty - 1) * (block.fields * (block.fields.transpose() * r));
+    // G u = B u + Σ (μ − 1) BQ (BQ)ᵀ u.
+    const Eigen::VectorXd u = detail::interleave(U);
+    Eigen::VectorXd result = base_times(u);
+    for (std::size_t k = 0; k < blocks_.size(); ++k) {
+        result += (blocks_[k].penalty - 1) * (base_blocks_[k] * (base_blocks_[k].transpose() * u));
     }
-    return detail::deinterleave(result.cwiseProduct(sqrt_mass_));
+    return detail::deinterleave(result);
 }
 
 VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& A, double dt,
@@ -144,28 +170,34 @@ VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& 
     if (!detail::finite_at_least(dt, 0)) {
         throw InvalidInput("SubspaceMetric::shifted_gradient: dt must be finite and >= 0");
     }
-    // E = M + dt·A, diagonal.
-    Eigen::VectorXd E = masses_;
+    // dt·A's diagonal, which is all of it.
+    Eigen::VectorXd shift = Eigen::VectorXd::Zero(n);
     for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
         for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
             if (it.row() != it.col() && it.value() != 0) {
                 throw InvalidInput("SubspaceMetric::shifted_gradient: A must be diagonal");
             }
             if (it.row() == it.col()) {
-                E[it.row()] += dt * it.value();
+                shift[it.row()] += dt * it.value();
             }
         }
     }
-    if (!(E.minCoeff() > 0) || !detail::all_finite(E)) {
-        throw SolverError("SubspaceMetric::shifted_gradient: M + dt·A is not positive");
+    // E⁻¹ X for E = B + dt·A: diagonal for B = M, else the base's own shifted solve.
+    std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> E_inverse_times;
+    if (!base_) {
+        const Eigen::VectorXd E = masses_ + shift;
+        if (!(E.minCoeff() > 0) || !detail::all_finite(E)) {
+            throw SolverError("SubspaceMetric::shifted_gradient: M + dt·A is not positive");
+        }
+        E_inverse_times = [E_rows = row_masses(E)](const Eigen::MatrixXd& X) -> Eigen::MatrixXd {
+            return X.array().colwise() / E_rows.array();
+        };
+    } else {
+        E_inverse_times = [&](const Eigen::MatrixXd& X) {
+            return column_by_column(
+                X, [&](const VertexField& field) { return base_->shifted_gradient(A, dt, field); });
+        };
     }
-    Eigen::VectorXd E_rows(3 * n);  // E for each of the 3n rows
-    for (Eigen::Index i = 0; i < n; ++i) {
-        E_rows.segment<3>(3 * i).setConstant(E[i]);
-    }
-    const auto E_inverse_times = [&](const Eigen::MatrixXd& fields) -> Eigen::MatrixXd {
-        return fields.array().colwise() / E_rows.array();
-    };
     // Woodbury: (E + UΓUᵀ)⁻¹r = E⁻¹r − E⁻¹U (Γ⁻¹ + UᵀE⁻¹U)⁻¹ UᵀE⁻¹r; neutral blocks drop out.
     Eigen::Index columns = 0;
     for (const FieldBlock& block : blocks_) {
@@ -174,12 +206,12 @@ VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& 
     Eigen::MatrixXd U(3 * n, columns);
     Eigen::VectorXd gamma_inverse(columns);
     Eigen::Index column = 0;
-    for (const FieldBlock& block : blocks_) {
-        if (block.penalty != 1) {
-            U.middleCols(column, block.fields.cols()) =
-                block.fields.array().colwise() * sqrt_mass_.array();  // M Q = M^{1/2} Q̃
-            gamma_inverse.segment(column, block.fields.cols()).setConstant(1 / (block.penalty - 1));
-            column += block.fields.cols();
+    for (std::size_t k = 0; k < blocks_.size(); ++k) {
+        if (blocks_[k].penalty != 1) {
+            U.middleCols(column, blocks_[k].fields.cols()) = base_blocks_[k];
+            gamma_inverse.segment(column, blocks_[k].fields.cols())
+                .setConstant(1 / (blocks_[k].penalty - 1));
+            column += blocks_[k].fields.cols();
         }
     }
     const Eigen::VectorXd Er = E_inverse_times(detail::interleave(R));

@@ -13,6 +13,7 @@
 #include "genflow/exceptions.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/metrics/l2_metric.h"
+#include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/mesh_size.h"
 #include "support/test_meshes.h"
 
@@ -177,6 +178,75 @@ TEST(SubspaceMetric, WoodburyImplicitSolveEqualsADenseSolve) {
             flat.segment<3>(3 * i) = solved.row(i).transpose();
         }
         EXPECT_LT((flat - expected).norm(), 1e-10 * expected.norm()) << dt;
+    }
+}
+
+// As 3n vectors (vertex i in entries 3i, 3i+1, 3i+2), and back.
+Eigen::VectorXd flattened(const VertexField& field) {
+    return field.transpose().reshaped();
+}
+VertexField unflattened(const Eigen::VectorXd& vector) {
+    return vector.reshaped(3, vector.size() / 3).transpose();
+}
+
+TEST(SubspaceMetric, OverAnH1BaseIsSPDBOrthonormalAndMeasuresTheResidualByB) {
+    const TriangleMesh mesh = test::noisy_icosphere(1, 0.1);
+    const Eigen::Index n = mesh.V.rows();
+    const SobolevOptions sobolev{.lambda = 0.05};
+    SubspaceMetric metric(overlapping_blocks, {}, std::make_unique<H1Metric>(sobolev));
+    H1Metric h1(sobolev);
+    metric.update(mesh);
+    h1.update(mesh);
+    const Eigen::MatrixXd G = dense_metric(metric, n);
+    const Eigen::MatrixXd B = dense_metric(h1, n);
+    EXPECT_LT((G - G.transpose()).norm(), 1e-12 * G.norm());
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(G).eigenvalues().minCoeff(), 0);
+    const VertexField U = test::noisy_icosphere(1, 0.3, 7).V;
+    EXPECT_LT(test::relative_error(metric.gradient(metric.apply(U)), U), 1e-10);
+
+    const std::vector<FieldBlock> blocks = metric.orthonormal_blocks();
+    ASSERT_EQ(blocks.size(), 4U);
+    Eigen::MatrixXd Q(3 * n, 0);
+    for (const FieldBlock& block : blocks) {
+        Eigen::MatrixXd grown(Q.rows(), Q.cols() + block.fields.cols());
+        grown << Q, block.fields;
+        Q = grown;
+        // A block's motions cost μ times their B-norm.
+        EXPECT_LT((G * block.fields - block.penalty * B * block.fields).norm(),
+                  1e-10 * (B * block.fields).norm());
+    }
+    EXPECT_LT((Q.transpose() * B * Q - Eigen::MatrixXd::Identity(Q.cols(), Q.cols())).norm(),
+              1e-10);
+    // The residual, B-orthogonal to every block, costs its B-norm: G v = B v.
+    const Eigen::VectorXd u = flattened(U);
+    const Eigen::VectorXd residual = u - Q * (Q.transpose() * (B * u));
+    EXPECT_LT((G * residual - B * residual).norm(), 1e-10 * (B * residual).norm());
+    // ... which the L2 base does not: there, the same field costs its M-norm.
+    SubspaceMetric over_mass(overlapping_blocks);
+    over_mass.update(mesh);
+    EXPECT_GT((dense_metric(over_mass, n) * residual - B * residual).norm(),
+              0.1 * (B * residual).norm());
+}
+
+TEST(SubspaceMetric, OverAnH1BaseTheWoodburyImplicitSolveEqualsADenseSolve) {
+    const TriangleMesh mesh = test::noisy_icosphere(1, 0.1);
+    const Eigen::Index n = mesh.V.rows();
+    SubspaceMetric metric(overlapping_blocks, {},
+                          std::make_unique<H1Metric>(SobolevOptions{.lambda = 0.05}));
+    metric.update(mesh);
+    Eigen::SparseMatrix<double> A(n, n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        A.insert(i, i) = 0.5 + static_cast<double>(i % 5);
+    }
+    const VertexField R = test::noisy_icosphere(1, 0.3, 11).V;
+    for (const double dt : {0.0, 0.01, 1.0, 100.0}) {
+        Eigen::MatrixXd system = dense_metric(metric, n);
+        for (Eigen::Index i = 0; i < n; ++i) {
+            system.block<3, 3>(3 * i, 3 * i).diagonal().array() += dt * A.coeff(i, i);
+        }
+        const Eigen::VectorXd expected = system.ldlt().solve(flattened(R));
+        const VertexField solved = metric.shifted_gradient(A, dt, R);
+        EXPECT_LT(test::relative_error(solved, unflattened(expected)), 1e-9) << dt;
     }
 }
 

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "genflow/metrics/metric.h"
@@ -32,23 +33,31 @@ struct SubspaceOptions {
 
 /// The prioritized subspace metric of SPEC.md §6, one mechanism for the quasi-rigid (§6.3.1)
 /// and quasi-articulated (§6.3.2) priors: given blocks B_1, …, B_K with penalties μ_k, block
-/// Gram–Schmidt in the M inner product gives M-orthonormal Q_k (each block minus what earlier
-/// blocks span; directions already spanned are dropped), and
+/// Gram–Schmidt in a base inner product B (the lumped mass M by default: the paper's L2) gives
+/// B-orthonormal Q_k (each block minus what earlier blocks span; directions already spanned
+/// are dropped), and
 ///
-///     G = M·L,  L = I + Σ_k (μ_k − 1) Q_k Q_kᵀ M,   G⁻¹ dE = M⁻¹ dE + Σ_k (1/μ_k − 1) Q_k Q_kᵀ dE,
+///     G = B + Σ_k (μ_k − 1) B Q_k Q_kᵀ B,   G⁻¹ dE = B⁻¹ dE + Σ_k (1/μ_k − 1) Q_k Q_kᵀ dE,
 ///
-/// which is SPD for any μ_k > 0 (the paper's eqs. 17–19 are not; see SPEC.md §6). The blocks are
-/// rebuilt from the current positions at every `update()`; applying G or G⁻¹ costs O(n·m), the
-/// rebuild O(n·m²) for m fields in all.
+/// which is SPD for any μ_k > 0 (the paper's eqs. 17–19 are not; see SPEC.md §6): the blocks'
+/// motions cost μ_k times their B-norm, the residual its B-norm. With B = M (L = I + Σ (μ_k − 1)
+/// Q_k Q_kᵀ M) the residual is free to move each vertex alone, as L2 does; with a Sobolev base
+/// (the `base` constructor argument, e.g. H1Metric) it moves smoothly. The blocks are rebuilt
+/// from the current positions at every `update()`; applying G or G⁻¹ costs O(n·m) plus one
+/// application of B or B⁻¹, the rebuild O(n·m²) plus m applications of B, for m fields in all.
 ///
 /// The implicit step (`shifted_gradient`) supports a diagonal A (the pseudo-Hausdorff
-/// linearization): G + dt·A = E + U Γ Uᵀ with E = M + dt·A diagonal, U = [M Q_k] and
-/// Γ = diag(μ_k − 1), solved by the Woodbury identity (SPEC.md §9).
+/// linearization): G + dt·A = E + U Γ Uᵀ with E = B + dt·A, U = [B Q_k] and Γ = diag(μ_k − 1),
+/// solved by the Woodbury identity (SPEC.md §9). With the default base E is diagonal; with
+/// another, E is solved by its own shifted_gradient() once per non-neutral field plus once.
 ///
 /// \note Fixed vertices are not supported (update() throws if a mask is set).
 class SubspaceMetric final : public Metric {
 public:
-    explicit SubspaceMetric(FieldBasis basis, SubspaceOptions options = {});
+    /// `base`: the inner product B of the residual (updated with this metric); null for the
+    /// lumped mass M of `options.mass`. The basis is given that lumped mass either way.
+    explicit SubspaceMetric(FieldBasis basis, SubspaceOptions options = {},
+                            std::unique_ptr<Metric> base = nullptr);
 
     /// \throws InvalidInput as Metric::update(), if a fixed-vertex mask is set, or if the basis
     ///         returns a block with the wrong row count, a non-finite entry or a penalty that
@@ -60,18 +69,24 @@ public:
     [[nodiscard]] VertexField shifted_gradient(const Eigen::SparseMatrix<double>& A, double dt,
                                                const VertexField& R) override;
 
-    /// The M-orthonormal blocks Q_k of the last update() (empty blocks dropped), with their
+    /// The B-orthonormal blocks Q_k of the last update() (empty blocks dropped), with their
     /// penalties.
     [[nodiscard]] std::vector<FieldBlock> orthonormal_blocks() const;
     /// The lumped masses of the last update().
     [[nodiscard]] const Eigen::VectorXd& masses() const { return masses_; }
 
 private:
+    // B X for the 3n-row columns of X, and B⁻¹ x.
+    [[nodiscard]] Eigen::MatrixXd base_times(const Eigen::MatrixXd& X) const;
+    [[nodiscard]] Eigen::VectorXd base_inverse_times(const Eigen::VectorXd& x) const;
+
     FieldBasis basis_;
     SubspaceOptions options_;
+    std::unique_ptr<Metric> base_;  // null: B = M
     Eigen::VectorXd masses_;
-    Eigen::VectorXd sqrt_mass_;       // √m_i for each of the 3n rows
-    std::vector<FieldBlock> blocks_;  // Q̃_k = M^{1/2} Q_k, orthonormal
+    Eigen::VectorXd row_masses_;                // m_i for each of the 3n rows
+    std::vector<FieldBlock> blocks_;            // Q_k, B-orthonormal
+    std::vector<Eigen::MatrixXd> base_blocks_;  // B Q_k
 };
 
 /// Penalties of the quasi-rigid prior (paper §6.3.1): each in (0, 1], smaller = that motion is
