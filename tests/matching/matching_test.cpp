@@ -38,11 +38,11 @@ constexpr double kDegree = std::numbers::pi / 180;
 // of every template vertex; errors are mean distances to it over the target's diagonal.
 struct BentLimbPair {
     TriangleMesh template_mesh = make_limb(3);
-    TriangleMesh target = make_limb(4, 9);
+    TriangleMesh target;
     Eigen::MatrixX3d truth;
     double diagonal = 0;
 
-    BentLimbPair() {
+    explicit BentLimbPair(int target_level = 4) : target(make_limb(target_level, 9)) {
         const std::vector<Joint> bend{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}};
         target.V = bend_at_joints(target.V, bend);
         truth = bend_at_joints(template_mesh.V, bend);
@@ -53,6 +53,25 @@ struct BentLimbPair {
     }
     [[nodiscard]] double error(const MatchResult& result) const { return error(result.deformed.V); }
 };
+
+// The truth with every template vertex whose x exceeds `above` put where its mirror image
+// through x = 0 belongs; `moved`, if given, receives those vertices.
+Eigen::MatrixX3d mirrored_beyond(const BentLimbPair& pair, double above,
+                                 std::vector<Eigen::Index>* moved = nullptr) {
+    const TriangleMesh& mesh = pair.template_mesh;
+    Eigen::MatrixX3d placed = pair.truth;
+    const detail::PointIndex template_points(mesh.V);
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        if (mesh.V(i, 0) > above) {
+            const Eigen::Vector3d mirror(-mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2));
+            placed.row(i) = pair.truth.row(template_points.nearest(mirror).first);
+            if (moved != nullptr) {
+                moved->push_back(i);
+            }
+        }
+    }
+    return placed;
+}
 
 // Options for matching the bent limb as given (no global alignment) with one candidate of the
 // last guided round: fewer flows to wait for where a test is about something else (the
@@ -478,26 +497,15 @@ TEST(SpectralDescriptors, GiveDescriptorsOfTheRequestedSpreadThatFollowThePose) 
 // wrong part, as a paw on the other paw), the swapped vertices still get descriptors close to
 // those of their true place and far from those of where they were put.
 TEST(SpectralDescriptors, EigenfunctionsFollowTheMajorityOfACorrespondence) {
-    const TriangleMesh template_mesh = make_limb(3);
-    TriangleMesh target = make_limb(3, 9);
-    const std::vector<Joint> bend{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}};
-    target.V = bend_at_joints(target.V, bend);
-    const Eigen::MatrixX3d truth = bend_at_joints(template_mesh.V, bend);
-    const double length = 0.1 * bounding_box_diagonal(target);
+    const BentLimbPair pair(3);
+    const TriangleMesh& template_mesh = pair.template_mesh;
+    const TriangleMesh& target = pair.target;
+    const double length = 0.1 * pair.diagonal;
     const detail::SpectralDescriptors spectral(template_mesh, target);
 
     // The +x end where the −x end lies, mirrored through x = 0.
-    Eigen::MatrixX3d swapped = truth;
-    const detail::PointIndex template_points(template_mesh.V);
     std::vector<Eigen::Index> moved;
-    for (Eigen::Index i = 0; i < template_mesh.V.rows(); ++i) {
-        if (template_mesh.V(i, 0) > 2) {
-            const Eigen::Vector3d mirror(-template_mesh.V(i, 0), template_mesh.V(i, 1),
-                                         template_mesh.V(i, 2));
-            swapped.row(i) = truth.row(template_points.nearest(mirror).first);
-            moved.push_back(i);
-        }
-    }
+    const Eigen::MatrixX3d swapped = mirrored_beyond(pair, 2, &moved);
     ASSERT_GT(moved.size(), template_mesh.V.rows() / 10);
 
     const detail::PointIndex target_points(target.V);
@@ -508,8 +516,8 @@ TEST(SpectralDescriptors, EigenfunctionsFollowTheMajorityOfACorrespondence) {
         }
         return points;
     };
-    const PointDescriptors at_truth =
-        spectral.eigenfunction_descriptors({swapped}, template_mesh.V, target_at(truth), length);
+    const PointDescriptors at_truth = spectral.eigenfunction_descriptors(
+        {swapped}, template_mesh.V, target_at(pair.truth), length);
     const PointDescriptors at_swapped =
         spectral.eigenfunction_descriptors({swapped}, template_mesh.V, target_at(swapped), length);
     ASSERT_EQ(at_truth.moving.rows(), template_mesh.V.rows());
@@ -542,33 +550,23 @@ TEST(SpectralDescriptors, EigenfunctionsFollowTheMajorityOfACorrespondence) {
 // its mirror image belongs) loses the functions odd in x, and the right placement wins whatever
 // the order.
 TEST(SpectralDescriptors, EigenfunctionsFollowTheMostIsometricPlacement) {
-    const TriangleMesh template_mesh = make_limb(3);
-    TriangleMesh target = make_limb(3, 9);
-    const std::vector<Joint> bend{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}};
-    target.V = bend_at_joints(target.V, bend);
-    const Eigen::MatrixX3d truth = bend_at_joints(template_mesh.V, bend);
-    const double length = 0.1 * bounding_box_diagonal(target);
+    const BentLimbPair pair(3);
+    const TriangleMesh& template_mesh = pair.template_mesh;
+    const TriangleMesh& target = pair.target;
+    const double length = 0.1 * pair.diagonal;
     const detail::SpectralDescriptors spectral(template_mesh, target);
 
-    Eigen::MatrixX3d folded = truth;
-    const detail::PointIndex template_points(template_mesh.V);
-    for (Eigen::Index i = 0; i < template_mesh.V.rows(); ++i) {
-        if (template_mesh.V(i, 0) > 0) {
-            const Eigen::Vector3d mirror(-template_mesh.V(i, 0), template_mesh.V(i, 1),
-                                         template_mesh.V(i, 2));
-            folded.row(i) = truth.row(template_points.nearest(mirror).first);
-        }
-    }
+    const Eigen::MatrixX3d folded = mirrored_beyond(pair, 0);
     const auto descriptors = [&](const std::vector<Eigen::MatrixX3d>& placements) {
         return spectral.eigenfunction_descriptors(placements, template_mesh.V, target.V, length)
             .moving;
     };
-    const Eigen::MatrixXd right = descriptors({truth});
+    const Eigen::MatrixXd right = descriptors({pair.truth});
     const Eigen::MatrixXd wrong = descriptors({folded});
     // The folded placement's map is another one (measured: 1.5 times the spread per vertex).
     EXPECT_GT((right - wrong).rowwise().norm().mean(), 0.5 * length);
-    EXPECT_EQ(descriptors({folded, truth}), right);
-    EXPECT_EQ(descriptors({truth, folded}), right);
+    EXPECT_EQ(descriptors({folded, pair.truth}), right);
+    EXPECT_EQ(descriptors({pair.truth, folded}), right);
     EXPECT_THROW((void)descriptors({}), InvalidInput);
 }
 
