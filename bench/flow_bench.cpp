@@ -2,12 +2,16 @@
 // Time per implicit-fairing step on the 48K-vertex horse ($GENFLOW_DATA/smoothing/horse_noisy.ply,
 // or a generated 50K-vertex torus without the data): the first step (symbolic analysis +
 // factorization + solve) and later steps separately, through the library (whichever backend it
-// was built with) and with CHOLMOD and Eigen's SimplicialLDLT side by side.
+// was built with) and with CHOLMOD and Eigen's SimplicialLDLT side by side. Also the rebuild of
+// the quasi-articulated metric (SPEC.md §6) at every flow step, on a generated 41K-vertex sphere
+// cut into a chain of 17 parts.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
 
 #ifdef GENFLOW_BENCH_HAS_CHOLMOD
 #include <Eigen/CholmodSupport>
@@ -15,6 +19,7 @@
 
 #include "genflow/energies/surface_area_energy.h"
 #include "genflow/io/read_mesh.h"
+#include "genflow/matching/articulated_prior.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/metrics/volume_controlled_metric.h"
@@ -130,10 +135,33 @@ void BM_Cholmod(benchmark::State& state) {
 
 }  // namespace
 
+// The quasi-articulated metric's update() (its block Gram–Schmidt) and one gradient, on a
+// 41K-vertex sphere cut along x into a chain of 17 parts (17 hand parts' worth of fields).
+void BM_ArticulatedMetricUpdate(benchmark::State& state) {
+    const genflow::TriangleMesh mesh = genflow::make_icosphere(6);
+    constexpr int kParts = 17;
+    Eigen::VectorXi labels(mesh.V.rows());
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        labels[i] = std::min(kParts - 1, static_cast<int>((mesh.V(i, 0) + 1) / 2 * kParts));
+    }
+    genflow::PartModel model;
+    for (int k = 0; k < kParts; ++k) {
+        model.parts.push_back(
+            {"part" + std::to_string(k), k - 1, Eigen::Vector3d(-1 + 2.0 * k / kParts, 0, 0)});
+    }
+    model.weights = genflow::weights_from_labels(labels, kParts);
+    genflow::SubspaceMetric metric = genflow::quasi_articulated_metric(mesh, model);
+    for (auto _ : state) {
+        metric.update(mesh);
+        benchmark::DoNotOptimize(metric.gradient(mesh.V));
+    }
+}
+
 BENCHMARK(BM_FairingStepFirst)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingStepLater)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingAssembleOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_VolumeFairingStep)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ArticulatedMetricUpdate)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EigenLDLT)->ArgName("phase")->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 #ifdef GENFLOW_BENCH_HAS_CHOLMOD
 BENCHMARK(BM_Cholmod)->ArgName("phase")->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
