@@ -108,6 +108,7 @@ void run_demo(const DemoOptions& options) {
         "quasi-articulated prior, in %.1f s.\n\n"
         "  correspondence error (vs. ground truth), mean / max:  %.2f %% / %.2f %% of the "
         "diagonal\n"
+        "  vertices stranded on the wrong part:                   %ld\n"
         "  surface distance to the target, mean / Hausdorff:     %.3f %% / %.3f %%\n\n"
         "wrote %s/: template.ply, target.ply, limb_parts.json, limb_part_labels.txt,\n"
         "           matched.ply (the deformed template), correspondence.txt, summary.json\n"
@@ -115,6 +116,7 @@ void run_demo(const DemoOptions& options) {
         "  genflow match %s/template.ply %s/target.ply -o matched.ply --parts %s/limb_parts.json\n",
         static_cast<long>(template_mesh.V.rows()), summary["seconds"].get<double>(),
         100 * error["mean"].get<double>(), 100 * error["max"].get<double>(),
+        summary["stranded_vertices"].get<long>(),
         100 * summary["mean_distance_over_diagonal"].get<double>(),
         100 * summary["hausdorff_over_diagonal"].get<double>(), directory.string().c_str(),
         directory.string().c_str(), directory.string().c_str(), directory.string().c_str());

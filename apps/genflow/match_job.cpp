@@ -6,6 +6,7 @@
 #include "genflow/io/atomic_file.h"
 #include "genflow/io/write_mesh.h"
 #include "genflow/matching/correspondence.h"
+#include "genflow/matching/correspondence_error.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/surface_distance.h"
 #include "progress_bar.h"
@@ -69,10 +70,12 @@ nlohmann::json run_match_job(MatchJob job) {
         {"mean_distance_over_diagonal", distances.mean / diagonal},
     };
     if (job.ground_truth) {
-        const Eigen::VectorXd error =
-            (result.deformed.V - *job.ground_truth).rowwise().norm() / diagonal;
-        summary["correspondence_error_over_diagonal"] = {{"mean", error.mean()},
-                                                         {"max", error.maxCoeff()}};
+        // Over the ground truth's own diagonal (the target's surface, sampled as the template).
+        const CorrespondenceError error = correspondence_error(
+            result.deformed.V, TriangleMesh{*job.ground_truth, result.deformed.F});
+        summary["correspondence_error_over_diagonal"] = {
+            {"mean", error.mean}, {"median", error.median}, {"max", error.max}};
+        summary["stranded_vertices"] = error.stranded_count;
     }
 
     write_mesh(job.output, result.deformed);

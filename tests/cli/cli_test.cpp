@@ -172,6 +172,7 @@ TEST(Cli, DemoMatchesTheGeneratedPairAndWritesEverything) {
     const auto summary = nlohmann::json::parse(std::ifstream(out / "summary.json"));
     EXPECT_EQ(summary["prior"], "articulated");
     EXPECT_LT(summary["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.05);
+    EXPECT_EQ(summary["stranded_vertices"], 0);
     EXPECT_NE(result.out.find("correspondence error"), std::string::npos) << result.out;
     // The part files it wrote are read back by genflow match.
     const auto again =

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+#include "genflow/matching/correspondence_error.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "genflow/exceptions.h"
+#include "genflow/mesh/primitives.h"
+#include "genflow/operators/mesh_size.h"
+
+namespace genflow {
+namespace {
+
+constexpr double kSheet = 1.0;    // length of each sheet
+constexpr double kRadius = 0.05;  // of the fold: the sheets are 2·kRadius apart
+constexpr double kWidth = 0.3;
+
+// A strip folded into a U: the bottom sheet z = 0 for x in [0, 1], a half-cylinder about
+// x = 1, the top sheet z = 0.1 back to x = 0. Points straight above one another are 0.1 apart
+// in space and up to 2.16 apart along the surface: a stand-in for two fingers side by side.
+TriangleMesh folded_strip() {
+    TriangleMesh strip = make_grid(60, 1.0);
+    const double length = 2 * kSheet + std::numbers::pi * kRadius;
+    for (Eigen::Index i = 0; i < strip.V.rows(); ++i) {
+        const double u = strip.V(i, 0) * length;
+        const double y = strip.V(i, 1) * kWidth;
+        if (u <= kSheet) {
+            strip.V.row(i) << u, y, 0;
+        } else if (u <= kSheet + std::numbers::pi * kRadius) {
+            const double angle = (u - kSheet) / kRadius;
+            strip.V.row(i) << kSheet + kRadius * std::sin(angle), y,
+                kRadius * (1 - std::cos(angle));
+        } else {
+            strip.V.row(i) << kSheet - (u - kSheet - std::numbers::pi * kRadius), y, 2 * kRadius;
+        }
+    }
+    return strip;
+}
+
+bool on_top_sheet(const Eigen::RowVector3d& x) {
+    return x.z() > 2 * kRadius - 1e-12;
+}
+
+TEST(CorrespondenceError, TheGroundTruthItselfHasNoError) {
+    const TriangleMesh truth = folded_strip();
+    const CorrespondenceError error = correspondence_error(truth.V, truth);
+    EXPECT_EQ(error.distance.size(), truth.V.rows());
+    EXPECT_EQ(error.max, 0);
+    EXPECT_EQ(error.stranded_count, 0);
+}
+
+TEST(CorrespondenceError, PointsPutOnTheOtherSheetAreStranded) {
+    const TriangleMesh truth = folded_strip();
+    const double diagonal = bounding_box_diagonal(truth);
+    Eigen::MatrixX3d deformed = truth.V;
+    Eigen::Index moved = 0;
+    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
+        // Far enough from the fold that the way round (2 (1 − x) + π r) is more than twice the
+        // gap 2r.
+        if (on_top_sheet(truth.V.row(i)) && truth.V(i, 0) < 0.8) {
+            deformed(i, 2) = 0;
+            ++moved;
+        }
+    }
+    ASSERT_GT(moved, 1000);
+    const CorrespondenceError error = correspondence_error(deformed, truth);
+    EXPECT_EQ(error.stranded_count, moved);
+    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
+        EXPECT_EQ(error.stranded[static_cast<std::size_t>(i)], deformed(i, 2) != truth.V(i, 2));
+    }
+    EXPECT_NEAR(error.max, 2 * kRadius / diagonal, 1e-12);
+    EXPECT_NEAR(
+        error.mean,
+        static_cast<double>(moved) / static_cast<double>(truth.V.rows()) * 2 * kRadius / diagonal,
+        1e-12);
+
+    // A detour allowance longer than any way round strands nothing.
+    EXPECT_EQ(correspondence_error(deformed, truth, {.detour = 30}).stranded_count, 0);
+}
+
+TEST(CorrespondenceError, PointsSlidAlongTheirOwnSheetAreOffButNotStranded) {
+    const TriangleMesh truth = folded_strip();
+    const double diagonal = bounding_box_diagonal(truth);
+    Eigen::MatrixX3d deformed = truth.V;
+    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
+        if (truth.V(i, 2) == 0 && truth.V(i, 0) <= 0.5) {
+            deformed(i, 0) += 0.4;  // 8 times the strand length of 0.05
+        }
+    }
+    const CorrespondenceError error = correspondence_error(deformed, truth);
+    EXPECT_NEAR(error.max, 0.4 / diagonal, 1e-12);
+    EXPECT_EQ(error.stranded_count, 0);
+    // No path is shorter than the straight line: a detour allowance below 1 is refused.
+    EXPECT_THROW((void)correspondence_error(deformed, truth, {.detour = 0.5}), InvalidInput);
+}
+
+TEST(CorrespondenceError, ATurnedSphereSlidesAlongItselfAndStrandsNothing) {
+    const TriangleMesh truth = make_icosphere(4);
+    for (const double degrees : {5.0, 20.0, 60.0}) {
+        const Eigen::Matrix3d turn = Eigen::AngleAxisd(degrees * std::numbers::pi / 180,
+                                                       Eigen::Vector3d(0.3, 0.2, 1).normalized())
+                                         .toRotationMatrix();
+        const Eigen::MatrixX3d deformed = truth.V * turn.transpose();
+        const CorrespondenceError error = correspondence_error(deformed, truth);
+        EXPECT_EQ(error.stranded_count, 0) << degrees;
+    }
+}
+
+TEST(CorrespondenceError, RefusesMismatchedOrNonFiniteInput) {
+    const TriangleMesh truth = folded_strip();
+    EXPECT_THROW((void)correspondence_error(truth.V.topRows(10), truth), InvalidInput);
+    Eigen::MatrixX3d deformed = truth.V;
+    deformed(3, 1) = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_THROW((void)correspondence_error(deformed, truth), InvalidInput);
+    EXPECT_THROW((void)correspondence_error(truth.V, truth, {.length = 0}), InvalidInput);
+    TriangleMesh faceless = truth;
+    faceless.F.resize(0, 3);
+    EXPECT_THROW((void)correspondence_error(truth.V, faceless), InvalidInput);
+}
+
+}  // namespace
+}  // namespace genflow
