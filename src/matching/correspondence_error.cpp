@@ -61,7 +61,7 @@ std::vector<std::vector<Neighbour>> chord_graph(const TriangleMesh& mesh) {
 // Whether `point` (on face `face` of `mesh`) is within `bound` of vertex `source` along the
 // surface: Dijkstra from the source until a corner of the face, plus the straight segment from
 // that corner to the point, is within the bound, or every vertex within it was settled.
-// `distance` holds +∞ for every vertex on entry and on return.
+// `distance_` holds +∞ for every vertex on entry and on return.
 class BoundedPath {
 public:
     explicit BoundedPath(const TriangleMesh& mesh, const std::vector<std::vector<Neighbour>>& graph)

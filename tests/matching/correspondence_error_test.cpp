@@ -51,6 +51,16 @@ TEST(CorrespondenceError, TheGroundTruthItselfHasNoError) {
     EXPECT_EQ(error.distance.size(), truth.V.rows());
     EXPECT_EQ(error.max, 0);
     EXPECT_EQ(error.stranded_count, 0);
+
+    // Moved as a whole by t: every vertex is |t| off, so mean, median and max are |t| over the
+    // diagonal; none lands farther along the surface than straight.
+    const Eigen::RowVector3d t(0.01, -0.02, 0.005);
+    const CorrespondenceError moved = correspondence_error(truth.V.rowwise() + t, truth);
+    const double expected = t.norm() / bounding_box_diagonal(truth);
+    EXPECT_NEAR(moved.mean, expected, 1e-15);
+    EXPECT_NEAR(moved.median, expected, 1e-15);
+    EXPECT_NEAR(moved.max, expected, 1e-15);
+    EXPECT_EQ(moved.stranded_count, 0);
 }
 
 TEST(CorrespondenceError, PointsPutOnTheOtherSheetAreStranded) {
