@@ -29,6 +29,7 @@ struct MatchCommandOptions {
     std::string correspondence;
     std::string frames;
     std::string summary;
+    std::string ground_truth;
     MatchOptions match;
     bool no_align = false;
     bool json = false;
@@ -58,6 +59,16 @@ void run_match(const MatchCommandOptions& options) {
         print_warnings(target);
     }
     MatchJob job;
+    if (!options.ground_truth.empty()) {
+        // Checked before the match, so that a wrong file costs nothing and writes nothing.
+        const LoadedMesh truth = load_mesh(options.ground_truth);
+        if (truth.mesh.V.rows() != template_mesh.mesh.V.rows()) {
+            throw IoError(options.ground_truth + ": the ground truth has " +
+                          std::to_string(truth.mesh.V.rows()) + " vertices, the template " +
+                          std::to_string(template_mesh.mesh.V.rows()));
+        }
+        job.ground_truth = truth.mesh.V;
+    }
     job.template_mesh = template_mesh.mesh;
     job.target = target.mesh;
     job.template_name = options.template_path;
@@ -107,6 +118,14 @@ void run_match(const MatchCommandOptions& options) {
         summary["hausdorff"].get<double>(), 100 * summary["hausdorff_over_diagonal"].get<double>(),
         summary["mean_distance"].get<double>(),
         100 * summary["mean_distance_over_diagonal"].get<double>(), options.output.c_str());
+    if (summary.contains("stranded_vertices")) {
+        const auto& error = summary["correspondence_error_over_diagonal"];
+        std::printf(
+            "correspondence error against the ground truth: mean %.2f%%, median %.2f%%, max "
+            "%.2f%% of its diagonal; %ld vertices stranded on the wrong part\n",
+            100 * error["mean"].get<double>(), 100 * error["median"].get<double>(),
+            100 * error["max"].get<double>(), summary["stranded_vertices"].get<long>());
+    }
 }
 
 }  // namespace
@@ -242,6 +261,10 @@ void register_match_command(CLI::App& app) {
                         "Write every flow step as frame_NNNNN.ply into this directory "
                         "(coarse levels have their own vertex counts)");
     command->add_option("--summary", options->summary, "Write the JSON summary to this file");
+    command->add_option(
+        "--ground-truth", options->ground_truth,
+        "The target's surface sampled as the template (same vertex count and order): report the "
+        "correspondence error and the vertices stranded on the wrong part");
     command->add_flag("--json", options->json, "Print the JSON summary instead of text");
     command->add_flag("--quiet", options->quiet,
                       "No progress bar (it shows only on a terminal anyway)");

@@ -30,18 +30,24 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     target.V = motion.apply(target.V);
     write_mesh(directory / "template.ply", template_mesh);
     write_mesh(directory / "target.obj", target);
+    // The template moved as the target was: where each of its vertices belongs.
+    write_mesh(directory / "truth.ply",
+               TriangleMesh{motion.apply(template_mesh.V), template_mesh.F});
     const auto result =
         run_genflow("match " + quoted(directory / "template.ply") + " " +
                     quoted(directory / "target.obj") + " -o " + quoted(directory / "out.ply") +
                     " --prior rigid --iterations 60 --correspondence " +
                     quoted(directory / "corr.txt") + " --frames " + quoted(directory / "frames") +
-                    " --summary " + quoted(directory / "summary.json") + " --json");
+                    " --summary " + quoted(directory / "summary.json") + " --ground-truth " +
+                    quoted(directory / "truth.ply") + " --json");
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto json = nlohmann::json::parse(result.out);
     EXPECT_EQ(json["prior"], "rigid");
     EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
     EXPECT_LT(json["hausdorff_over_diagonal"].get<double>(), 0.05);
     EXPECT_EQ(json["levels"].size(), 1u);
+    EXPECT_LT(json["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.02);
+    EXPECT_EQ(json["stranded_vertices"], 0);
     const TriangleMesh out = read_mesh(directory / "out.ply");
     EXPECT_EQ(out.F, template_mesh.F);
     std::ifstream correspondences(directory / "corr.txt");
@@ -98,6 +104,15 @@ TEST(MatchCli, RefusesBadInputAndWritesNothing) {
                                  quoted(directory / "limb.ply") + " -o " + quoted(out));
     EXPECT_EQ(fan.exit_code, 2);
     EXPECT_NE(fan.err.find("not manifold"), std::string::npos) << fan.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    // A ground truth that does not fit the template: refused before the match.
+    write_mesh(directory / "small.ply", make_limb(1));
+    const auto wrong_truth = run_genflow("match " + quoted(directory / "limb.ply") + " " +
+                                         quoted(directory / "limb.ply") + " -o " + quoted(out) +
+                                         " --ground-truth " + quoted(directory / "small.ply"));
+    EXPECT_EQ(wrong_truth.exit_code, 2);
+    EXPECT_NE(wrong_truth.err.find("small.ply: the ground truth has"), std::string::npos)
+        << wrong_truth.err;
     EXPECT_FALSE(std::filesystem::exists(out));
     const auto unknown_prior =
         run_genflow("match " + quoted(directory / "limb.ply") + " " +
