@@ -131,8 +131,7 @@ void run_eval(const EvalOptions& options) {
             "shape (the ground-truth point nearest to where a vertex was put is more than 10 %% "
             "of the diagonal from where it belongs along the surface, and more than twice as "
             "far as straight); Hausdorff is the exact symmetric distance to the remeshed target "
-            "over "
-            "the same diagonal.\n");
+            "over the same diagonal.\n");
     }
 }
 

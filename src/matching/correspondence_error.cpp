@@ -164,6 +164,8 @@ CorrespondenceError correspondence_error(const Eigen::MatrixX3d& deformed,
     error.max = error.distance.maxCoeff();
 
     const std::vector<std::vector<Neighbour>> graph = chord_graph(truth);
+    // One byte per vertex: the threads write their own vertices, which std::vector<bool>'s
+    // shared words would not allow.
     std::vector<char> stranded(static_cast<std::size_t>(deformed.rows()), 0);
 #pragma omp parallel
     {

@@ -10,8 +10,9 @@
 
 namespace genflow {
 
-/// When a vertex counts as stranded (correspondence_error()). Both lengths are fractions of the
-/// ground truth's bounding-box diagonal, so the defaults need no tuning per mesh.
+/// When a vertex counts as stranded (correspondence_error()). `length` is a fraction of the
+/// ground truth's bounding-box diagonal and `detour` a ratio, so the defaults need no tuning per
+/// mesh.
 struct StrandedOptions {
     /// A vertex put within this distance of its ground truth, along the surface, is never
     /// stranded: a limb's reach, well above a finger's width. (Measured with h1 on the full
