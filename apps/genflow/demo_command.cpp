@@ -109,6 +109,7 @@ void run_demo(const DemoOptions& options) {
         "  correspondence error (vs. ground truth), mean / max:  %.2f %% / %.2f %% of the "
         "diagonal\n"
         "  vertices stranded on the wrong part:                   %ld\n"
+        "  area turned over (faces facing the wrong way):         %.2f %%\n"
         "  surface distance to the target, mean / Hausdorff:     %.3f %% / %.3f %%\n\n"
         "wrote %s/: template.ply, target.ply, limb_parts.json, limb_part_labels.txt,\n"
         "           matched.ply (the deformed template), correspondence.txt, summary.json\n"
@@ -116,7 +117,7 @@ void run_demo(const DemoOptions& options) {
         "  genflow match %s/template.ply %s/target.ply -o matched.ply --parts %s/limb_parts.json\n",
         static_cast<long>(template_mesh.V.rows()), summary["seconds"].get<double>(),
         100 * error["mean"].get<double>(), 100 * error["max"].get<double>(),
-        summary["stranded_vertices"].get<long>(),
+        summary["stranded_vertices"].get<long>(), 100 * summary["reversed_area"].get<double>(),
         100 * summary["mean_distance_over_diagonal"].get<double>(),
         100 * summary["hausdorff_over_diagonal"].get<double>(), directory.string().c_str(),
         directory.string().c_str(), directory.string().c_str(), directory.string().c_str());

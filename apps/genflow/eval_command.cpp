@@ -66,8 +66,9 @@ void run_eval(const EvalOptions& options) {
     nlohmann::json rows = nlohmann::json::array();
     if (!options.json) {
         std::printf(
-            "| pair | prior | mean error | median | max | stranded | Hausdorff | time |\n"
-            "|---|---|---:|---:|---:|---:|---:|---:|\n");
+            "| pair | prior | mean error | median | max | stranded | reversed | Hausdorff | time "
+            "|\n"
+            "|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
     }
     for (const auto& pair : pairs) {
         const std::string name = field(file, pair, "name");
@@ -107,17 +108,23 @@ void run_eval(const EvalOptions& options) {
             const CorrespondenceError error = correspondence_error(result.deformed.V, truth);
             const double hausdorff =
                 surface_distances(result.deformed, target).hausdorff / diagonal;
-            const nlohmann::json row = {
-                {"pair", name},           {"prior", prior_name},
-                {"mean", error.mean},     {"median", error.median},
-                {"max", error.max},       {"stranded_vertices", error.stranded_count},
-                {"hausdorff", hausdorff}, {"seconds", result.seconds}};
+            const nlohmann::json row = {{"pair", name},
+                                        {"prior", prior_name},
+                                        {"mean", error.mean},
+                                        {"median", error.median},
+                                        {"max", error.max},
+                                        {"stranded_vertices", error.stranded_count},
+                                        {"reversed_area", error.reversed_area},
+                                        {"hausdorff", hausdorff},
+                                        {"seconds", result.seconds}};
             rows.push_back(row);
             if (!options.json) {
-                std::printf("| %s | %s | %.2f %% | %.2f %% | %.2f %% | %ld | %.2f %% | %.1f s |\n",
-                            name.c_str(), prior_name.c_str(), 100 * error.mean, 100 * error.median,
-                            100 * error.max, static_cast<long>(error.stranded_count),
-                            100 * hausdorff, result.seconds);
+                std::printf(
+                    "| %s | %s | %.2f %% | %.2f %% | %.2f %% | %ld | %.2f %% | %.2f %% | %.1f s "
+                    "|\n",
+                    name.c_str(), prior_name.c_str(), 100 * error.mean, 100 * error.median,
+                    100 * error.max, static_cast<long>(error.stranded_count),
+                    100 * error.reversed_area, 100 * hausdorff, result.seconds);
                 std::fflush(stdout);
             }
         }
@@ -130,7 +137,9 @@ void run_eval(const EvalOptions& options) {
             "diagonal; stranded: how many template vertices were put on the wrong part of the "
             "shape (the ground-truth point nearest to where a vertex was put is more than 10 %% "
             "of the diagonal from where it belongs along the surface, and more than twice as "
-            "far as straight); Hausdorff is the exact symmetric distance to the remeshed target "
+            "far as straight); reversed: the share of the ground truth's area whose faces the "
+            "match turned over (a part put back to front); Hausdorff is the exact symmetric "
+            "distance to the remeshed target "
             "over the same diagonal.\n");
     }
 }

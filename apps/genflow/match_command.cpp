@@ -122,9 +122,11 @@ void run_match(const MatchCommandOptions& options) {
         const auto& error = summary["correspondence_error_over_diagonal"];
         std::printf(
             "correspondence error against the ground truth: mean %.2f%%, median %.2f%%, max "
-            "%.2f%% of its diagonal; %ld vertices stranded on the wrong part\n",
+            "%.2f%% of its diagonal; %ld vertices stranded on the wrong part; %.2f%% of the "
+            "area turned over\n",
             100 * error["mean"].get<double>(), 100 * error["median"].get<double>(),
-            100 * error["max"].get<double>(), summary["stranded_vertices"].get<long>());
+            100 * error["max"].get<double>(), summary["stranded_vertices"].get<long>(),
+            100 * summary["reversed_area"].get<double>());
     }
 }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "match_job.h"
 
+#include <vector>
+
 #include "cli_support.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
@@ -76,6 +78,15 @@ nlohmann::json run_match_job(MatchJob job) {
         summary["correspondence_error_over_diagonal"] = {
             {"mean", error.mean}, {"median", error.median}, {"max", error.max}};
         summary["stranded_vertices"] = error.stranded_count;
+        summary["reversed_area"] = error.reversed_area;
+        // Which ones, so that they can be shown on the mesh (0-based template indices).
+        std::vector<Eigen::Index> stranded;
+        for (std::size_t i = 0; i < error.stranded.size(); ++i) {
+            if (error.stranded[i]) {
+                stranded.push_back(static_cast<Eigen::Index>(i));
+            }
+        }
+        summary["stranded_vertex_indices"] = stranded;
     }
 
     write_mesh(job.output, result.deformed);

@@ -48,6 +48,8 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(json["levels"].size(), 1u);
     EXPECT_LT(json["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.02);
     EXPECT_EQ(json["stranded_vertices"], 0);
+    EXPECT_TRUE(json["stranded_vertex_indices"].empty());
+    EXPECT_LT(json["reversed_area"].get<double>(), 0.01);
     const TriangleMesh out = read_mesh(directory / "out.ply");
     EXPECT_EQ(out.F, template_mesh.F);
     std::ifstream correspondences(directory / "corr.txt");

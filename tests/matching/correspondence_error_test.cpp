@@ -51,6 +51,8 @@ TEST(CorrespondenceError, TheGroundTruthItselfHasNoError) {
     EXPECT_EQ(error.distance.size(), truth.V.rows());
     EXPECT_EQ(error.max, 0);
     EXPECT_EQ(error.stranded_count, 0);
+    EXPECT_EQ(error.reversed.size(), static_cast<std::size_t>(truth.F.rows()));
+    EXPECT_EQ(error.reversed_count, 0);
 
     // Moved as a whole by t: every vertex is |t| off, so mean, median and max are |t| over the
     // diagonal; none lands farther along the surface than straight.
@@ -117,6 +119,46 @@ TEST(CorrespondenceError, ATurnedSphereSlidesAlongItselfAndStrandsNothing) {
         const Eigen::MatrixX3d deformed = truth.V * turn.transpose();
         const CorrespondenceError error = correspondence_error(deformed, truth);
         EXPECT_EQ(error.stranded_count, 0) << degrees;
+        EXPECT_EQ(error.reversed_count, 0) << degrees;  // a turn keeps every face's side
+    }
+}
+
+// A "hand" put back to front in its own place: the half x ≥ 1/2 of a square sheet turned 180°
+// about its midline y = 1/2. Every point stays on the sheet, no farther from where it belongs
+// along it than straight, so nothing is stranded; but that half's faces face the other way.
+TEST(CorrespondenceError, APartPutBackToFrontHasItsFacesReversed) {
+    constexpr int kCells = 60;
+    const TriangleMesh truth = make_grid(kCells, 1.0);
+    Eigen::MatrixX3d deformed = truth.V;
+    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
+        if (truth.V(i, 0) > 0.5 - 1e-12) {
+            deformed(i, 1) = 1 - truth.V(i, 1);
+            deformed(i, 2) = -truth.V(i, 2);
+        }
+    }
+    const CorrespondenceError error = correspondence_error(deformed, truth);
+    EXPECT_EQ(error.stranded_count, 0);
+    EXPECT_GT(error.max, 0.5);  // the half's corners swapped: |Δy| = 1 over a diagonal √2
+    // Every face of that half, and of the column of cells along x = 1/2 at most.
+    EXPECT_GE(error.reversed_area, 0.5 - 1e-12);
+    EXPECT_LE(error.reversed_area, 0.5 + 1.0 / kCells + 1e-12);
+    // The whole sheet mirrored in its own plane (x → 1 − x): on itself, every face turned over.
+    Eigen::MatrixX3d mirrored = truth.V;
+    mirrored.col(0) = 1 - truth.V.col(0).array();
+    const CorrespondenceError all = correspondence_error(mirrored, truth);
+    EXPECT_EQ(all.stranded_count, 0);
+    EXPECT_EQ(all.reversed_count, truth.F.rows());
+    EXPECT_NEAR(all.reversed_area, 1, 1e-12);
+
+    for (Eigen::Index f = 0; f < truth.F.rows(); ++f) {
+        const double left = truth.V(truth.F.row(f), Eigen::all).col(0).minCoeff();
+        if (left > 0.5 - 1e-12) {
+            EXPECT_TRUE(error.reversed[static_cast<std::size_t>(f)]) << f;
+        }
+        const double right = truth.V(truth.F.row(f), Eigen::all).col(0).maxCoeff();
+        if (right < 0.5 - 1e-12) {
+            EXPECT_FALSE(error.reversed[static_cast<std::size_t>(f)]) << f;
+        }
     }
 }
 

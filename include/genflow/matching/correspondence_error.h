@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // How far a match is from the ground truth (issue 5's evaluation): per template vertex, the
-// distance to where it belongs, and whether it was stranded on the wrong part of the shape.
+// distance to where it belongs, and whether it was stranded on the wrong part of the shape; per
+// face, whether it was turned over.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,7 +19,8 @@ struct StrandedOptions {
     /// stranded: a limb's reach, well above a finger's width. (Measured with h1 on the full
     /// pairs of $GENFLOW_DATA: at 5 % of the diagonal, 3086 vertices of TOSCA michael's
     /// fingers, each put on the neighbouring finger 0.4–3 % from where it belongs, counted as
-    /// stranded, and 538 of the cat's; at 10 %, 9 where the thighs touch and 57.)
+    /// stranded, and 538 of the cat's; at 10 %, 9 where the thighs touch and 57. Those fingers
+    /// belong to hands turned palm for back: CorrespondenceError::reversed shows such parts.)
     double length = 0.1;
     /// Farther than `length`, it is stranded when the path along the surface from its ground
     /// truth to where it was put is more than this many times the straight distance: it sits
@@ -35,10 +37,18 @@ struct CorrespondenceError {
     Eigen::VectorXd distance;
     /// Per template vertex: whether it is stranded (StrandedOptions).
     std::vector<bool> stranded;
+    /// Per face of `truth`: whether the match turned it over (its normal makes more than 90°
+    /// with its normal in the ground truth). A part put back to front near its own place, such
+    /// as a hand palm for back, stays within `StrandedOptions::length` of where it belongs and
+    /// a few percent of the diagonal off on average: its faces show it.
+    std::vector<bool> reversed;
     double mean = 0;
     double median = 0;
     double max = 0;
     Eigen::Index stranded_count = 0;
+    Eigen::Index reversed_count = 0;
+    /// The reversed faces' share of the ground truth's area, in [0, 1].
+    double reversed_area = 0;
 };
 
 /// Measures `deformed` (#V×3, the template's vertices after a match) against `truth`. A vertex
@@ -46,7 +56,8 @@ struct CorrespondenceError {
 /// the chords between vertices of `truth` at most two edges apart (Dijkstra from vertex i,
 /// stopped at the bound that decides, then straight from a corner of the face reached), which
 /// follows the surface closely even on long thin triangles, where paths along the edges zigzag.
-/// Uses both cores when OpenMP is available.
+/// Faces are compared by their normals in `deformed` and in `truth` (`truth`'s faces index
+/// both). Uses both cores when OpenMP is available.
 /// \throws InvalidInput if the vertex counts differ, a point is not finite, `truth` has no face
 ///         or a zero diagonal, or the options are not positive and finite (detour ≥ 1).
 [[nodiscard]] CorrespondenceError correspondence_error(const Eigen::MatrixX3d& deformed,
