@@ -139,8 +139,7 @@ void run_eval(const EvalOptions& options) {
             "of the diagonal from where it belongs along the surface, and more than twice as "
             "far as straight); reversed: the share of the ground truth's area whose faces the "
             "match turned over (a part put back to front); Hausdorff is the exact symmetric "
-            "distance to the remeshed target "
-            "over the same diagonal.\n");
+            "distance to the remeshed target over the same diagonal.\n");
     }
 }
 

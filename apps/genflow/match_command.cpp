@@ -266,7 +266,7 @@ void register_match_command(CLI::App& app) {
     command->add_option(
         "--ground-truth", options->ground_truth,
         "The target's surface sampled as the template (same vertex count and order): report the "
-        "correspondence error and the vertices stranded on the wrong part");
+        "correspondence error, the vertices stranded on the wrong part and the area turned over");
     command->add_flag("--json", options->json, "Print the JSON summary instead of text");
     command->add_flag("--quiet", options->quiet,
                       "No progress bar (it shows only on a terminal anyway)");

@@ -186,21 +186,15 @@ CorrespondenceError correspondence_error(const Eigen::MatrixX3d& deformed,
     // Faces turned over: a part put back to front near its own place (a hand palm for back)
     // moves few vertices far, so neither the mean nor the strands see it; its normals do.
     error.reversed.assign(static_cast<std::size_t>(truth.F.rows()), false);
+    const TriangleMesh placed{deformed, truth.F};
     double total_area = 0;
     double reversed_area = 0;
     for (Eigen::Index f = 0; f < truth.F.rows(); ++f) {
-        const auto corner = [&](const auto& points, int k) -> Eigen::Vector3d {
-            return points.row(truth.F(f, k)).transpose();
-        };
-        const Eigen::Vector3d truth_normal = (corner(truth.V, 1) - corner(truth.V, 0))
-                                                 .cross(corner(truth.V, 2) - corner(truth.V, 0));
-        const Eigen::Vector3d normal = (corner(deformed, 1) - corner(deformed, 0))
-                                           .cross(corner(deformed, 2) - corner(deformed, 0));
-        const double area = 0.5 * truth_normal.norm();
-        total_area += area;
-        if (normal.dot(truth_normal) < 0) {
+        const detail::Triangle where_it_belongs(truth, f);
+        total_area += where_it_belongs.area();
+        if (detail::Triangle(placed, f).cross.dot(where_it_belongs.cross) < 0) {
             error.reversed[static_cast<std::size_t>(f)] = true;
-            reversed_area += area;
+            reversed_area += where_it_belongs.area();
             ++error.reversed_count;
         }
     }
