@@ -5,6 +5,7 @@ set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libsuitesparse-dev libnanoflann-dev libmeshoptimizer-dev libcli11-dev nlohmann-json3-dev
+  libspectra-dev
   libgtest-dev libbenchmark-dev
   libopenblas0-pthread
   clang clang-format libfuzzer-14-dev

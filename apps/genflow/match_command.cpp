@@ -32,6 +32,7 @@ struct MatchCommandOptions {
     std::string ground_truth;
     MatchOptions match;
     bool no_align = false;
+    bool no_turn_back = false;
     bool json = false;
     bool quiet = false;
 };
@@ -103,6 +104,7 @@ void run_match(const MatchCommandOptions& options) {
         throw InvalidInput("match: --prior articulated needs --parts PARTS.json");
     }
     job.options.align = !options.no_align;
+    job.options.turn_back_parts = !options.no_turn_back;
     job.progress_bar = !options.json && !options.quiet;
     const nlohmann::json summary = run_match_job(std::move(job));
     if (options.json) {
@@ -252,6 +254,10 @@ void register_match_command(CLI::App& app) {
                      "Steps of each guided refining flow")
         ->check(CLI::Range(0, 100000))
         ->capture_default_str();
+    command->add_flag("--no-turn-back", options->no_turn_back,
+                      "Do not turn back the parts that a fine functional map (60 eigenfunctions) "
+                      "places turned over in their own place (a hand palm for back) after the "
+                      "refinement");
     command->add_flag("--implicit", options->match.implicit,
                       "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
     command->add_flag("--no-align", options->no_align,

@@ -65,6 +65,7 @@ nlohmann::json run_match_job(MatchJob job) {
         {"stretch_weight", result.stretch_weight},
         {"eigenfunction_guidance", result.eigenfunction_guidance},
         {"refinement_guidance", result.refinement_guidance},
+        {"turned_parts", result.turned_parts},
         {"hausdorff", distances.hausdorff},
         {"mean_distance", distances.mean},
         {"target_bbox_diagonal", diagonal},

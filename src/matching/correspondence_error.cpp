@@ -29,12 +29,7 @@ struct Neighbour {
 
 std::vector<std::vector<Neighbour>> chord_graph(const TriangleMesh& mesh) {
     const auto n = static_cast<std::size_t>(mesh.V.rows());
-    std::vector<std::vector<Eigen::Index>> ring(n);
-    const Eigen::MatrixX2i edges = unique_edges(mesh.F);
-    for (Eigen::Index e = 0; e < edges.rows(); ++e) {
-        ring[static_cast<std::size_t>(edges(e, 0))].push_back(edges(e, 1));
-        ring[static_cast<std::size_t>(edges(e, 1))].push_back(edges(e, 0));
-    }
+    const std::vector<std::vector<Eigen::Index>> ring = vertex_neighbours(mesh.F, mesh.V.rows());
     std::vector<std::vector<Neighbour>> graph(n);
     std::vector<Eigen::Index> stamp(n, -1);
     for (std::size_t a = 0; a < n; ++a) {

@@ -21,6 +21,7 @@
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/mesh_size.h"
 #include "matching/spectral_descriptors.h"
+#include "matching/turned_parts.h"
 #include "operators/triangle.h"
 
 namespace genflow {
@@ -640,6 +641,29 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         return flow;
     };
 
+    // The parts of the refined level that a fine functional map places turned over
+    // (MatchOptions::turn_back_parts): turned back and flowed again, if d_H stays about as low.
+    const auto turn_back = [&](int l, FlowResult& flow) {
+        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        TriangleMesh rest = level.template_mesh;
+        rest.V = best_start.apply(rest.V);
+        const std::vector<detail::TurnedPart> parts =
+            detail::find_turned_parts(rest, flow.mesh.V, level.target);
+        if (parts.empty()) {
+            return;
+        }
+        TriangleMesh turned = flow.mesh;
+        turned.V = detail::turned_back(rest, flow.mesh.V, parts);
+        FlowResult again = flow_level(l, turned, options.refinement_iterations, best_start,
+                                      options.prior, {}, options.stretch_weight, false);
+        if (!cancelled && again.energy.back() <= 1.25 * flow.energy.back()) {
+            again.steps += flow.steps;
+            again.energy.front() = flow.energy.front();
+            flow = std::move(again);
+            result.turned_parts = static_cast<int>(parts.size());
+        }
+    };
+
     // Finer levels: transfer, then a short flow.
     const bool refines =
         guided && options.eigenfunction_guidance > 0 && options.refinement_guidances > 0;
@@ -651,6 +675,9 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         FlowResult flow = refines && l == count - 2 ? refine(l, moved)
                                                     : flow_level(l, moved, options.fine_iterations,
                                                                  best_start, options.prior);
+        if (refines && l == count - 2 && options.turn_back_parts && !cancelled) {
+            turn_back(l, flow);
+        }
         result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));
         current = std::move(flow.mesh);
     }

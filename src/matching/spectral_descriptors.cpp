@@ -11,6 +11,7 @@
 #include "genflow/matching/multiresolution.h"
 #include "genflow/operators/heat_kernel_signature.h"
 #include "genflow/operators/laplacian_eigenbasis.h"
+#include "matching/functional_map.h"
 
 namespace genflow::detail {
 
@@ -48,29 +49,6 @@ CoarseSpectrum coarse_spectrum(const TriangleMesh& coarse) {
     result.masses = basis.masses(result.vertex);
     result.values = basis.values(kept) * basis.masses.sum();
     return result;
-}
-
-// For each row of `from`, the nearest row of `to` (brute force: a few thousand rows).
-std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from, const Eigen::MatrixXd& to) {
-    // |a − b|² = |b|² − 2 a·b + |a|², the last the same for every b.
-    const Eigen::MatrixXd distance =
-        (-2 * from * to.transpose()).rowwise() + to.rowwise().squaredNorm().transpose();
-    std::vector<Eigen::Index> nearest(static_cast<std::size_t>(from.rows()));
-    for (Eigen::Index i = 0; i < from.rows(); ++i) {
-        distance.row(i).minCoeff(&nearest[static_cast<std::size_t>(i)]);
-    }
-    return nearest;
-}
-
-// The functional map C (size × size) fitted to a correspondence in the M-weighted least-squares
-// sense: ψ(π(i)) ≈ φ(i) C, which is C = φᵀ M ψ(π) as φ is M-orthonormal.
-Eigen::MatrixXd fitted_functional_map(const Eigen::MatrixXd& template_functions,
-                                      const Eigen::VectorXd& template_masses,
-                                      const Eigen::MatrixXd& target_functions,
-                                      const std::vector<Eigen::Index>& correspondence,
-                                      Eigen::Index size) {
-    return template_functions.leftCols(size).transpose() * template_masses.asDiagonal() *
-           target_functions(correspondence, Eigen::seqN(0, size));
 }
 
 // 1 for an orthogonal map; lower as the map loses functions (SpectralDescriptors::
@@ -180,18 +158,8 @@ PointDescriptors SpectralDescriptors::signature_descriptors(const Eigen::MatrixX
 std::vector<Eigen::Index> SpectralDescriptors::zoom_out(std::vector<Eigen::Index> correspondence,
                                                         Eigen::Index first,
                                                         Eigen::Index count) const {
-    const Eigen::RowVectorXd weight = function_weights(count);
-    for (Eigen::Index size = std::min(first, count); size <= count; ++size) {
-        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
-            fitted_functional_map(template_functions_, template_masses_, target_functions_,
-                                  correspondence, size),
-            Eigen::ComputeFullU | Eigen::ComputeFullV);
-        const Eigen::MatrixXd orthogonal = svd.matrixU() * svd.matrixV().transpose();
-        const auto scaled = weight.head(size).asDiagonal();
-        correspondence = nearest_rows(template_functions_.leftCols(size) * orthogonal * scaled,
-                                      target_functions_.leftCols(size) * scaled);
-    }
-    return correspondence;
+    return detail::zoom_out(template_functions_, template_masses_, target_functions_,
+                            function_weights(count), std::move(correspondence), first, count);
 }
 
 Eigen::RowVectorXd SpectralDescriptors::function_weights(Eigen::Index count) const {

@@ -56,4 +56,15 @@ Eigen::MatrixX2i unique_edges(const Eigen::MatrixX3i& F) {
     return E;
 }
 
+std::vector<std::vector<Eigen::Index>> vertex_neighbours(const Eigen::MatrixX3i& F,
+                                                         Eigen::Index num_vertices) {
+    std::vector<std::vector<Eigen::Index>> neighbours(static_cast<std::size_t>(num_vertices));
+    const Eigen::MatrixX2i edges = unique_edges(F);
+    for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+        neighbours[static_cast<std::size_t>(edges(e, 0))].push_back(edges(e, 1));
+        neighbours[static_cast<std::size_t>(edges(e, 1))].push_back(edges(e, 0));
+    }
+    return neighbours;
+}
+
 }  // namespace genflow

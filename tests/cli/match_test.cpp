@@ -46,6 +46,7 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
     EXPECT_LT(json["hausdorff_over_diagonal"].get<double>(), 0.05);
     EXPECT_EQ(json["levels"].size(), 1u);
+    EXPECT_EQ(json["turned_parts"], 0);  // the rigid prior has no refinement to turn back
     EXPECT_LT(json["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.02);
     EXPECT_EQ(json["stranded_vertices"], 0);
     EXPECT_TRUE(json["stranded_vertex_indices"].empty());
@@ -69,8 +70,8 @@ TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
     const std::string command = "match " + quoted(directory / "template.ply") + " " +
                                 quoted(directory / "target.ply") + " -o " +
                                 quoted(directory / "out.ply") + " --prior isometric --no-align";
-    const auto result =
-        run_genflow(command + " --rigidity-length 0.3 --fake-edges 20 --implicit --json");
+    const auto result = run_genflow(
+        command + " --rigidity-length 0.3 --fake-edges 20 --implicit --no-turn-back --json");
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto json = nlohmann::json::parse(result.out);
     EXPECT_EQ(json["prior"], "isometric");

@@ -38,5 +38,31 @@ TEST(Edges, BoundaryVerticesOfAGridAndAClosedMesh) {
     EXPECT_EQ(std::count(none.begin(), none.end(), true), 0);
 }
 
+// Each vertex of a 4×4 grid has as many neighbours as edges at it (2 to 6), each edge seen
+// from both ends; on an icosphere, 5 at the 12 original corners and 6 elsewhere.
+TEST(Edges, VertexNeighboursAreTheOneRings) {
+    const TriangleMesh grid = make_grid(4);
+    const auto rings = vertex_neighbours(grid.F, grid.V.rows());
+    ASSERT_EQ(rings.size(), static_cast<std::size_t>(grid.V.rows()));
+    std::size_t ends = 0;
+    for (std::size_t i = 0; i < rings.size(); ++i) {
+        ends += rings[i].size();
+        for (const Eigen::Index j : rings[i]) {
+            const auto& back = rings[static_cast<std::size_t>(j)];
+            EXPECT_NE(std::find(back.begin(), back.end(), static_cast<Eigen::Index>(i)),
+                      back.end());
+        }
+    }
+    EXPECT_EQ(ends, 2 * static_cast<std::size_t>(unique_edges(grid.F).rows()));
+    const TriangleMesh sphere = make_icosphere(2);
+    const auto sphere_rings = vertex_neighbours(sphere.F, sphere.V.rows());
+    EXPECT_EQ(std::count_if(sphere_rings.begin(), sphere_rings.end(),
+                            [](const auto& ring) { return ring.size() == 5; }),
+              12);
+    EXPECT_EQ(std::count_if(sphere_rings.begin(), sphere_rings.end(),
+                            [](const auto& ring) { return ring.size() == 6; }),
+              sphere.V.rows() - 12);
+}
+
 }  // namespace
 }  // namespace genflow

@@ -16,4 +16,9 @@ namespace genflow {
 [[nodiscard]] std::vector<bool> boundary_vertices(const Eigen::MatrixX3i& F,
                                                   Eigen::Index num_vertices);
 
+/// Each vertex's neighbours along the edges of F (its one ring, in no particular order), for
+/// `num_vertices` vertices. Indices must lie in [0, num_vertices).
+[[nodiscard]] std::vector<std::vector<Eigen::Index>> vertex_neighbours(const Eigen::MatrixX3i& F,
+                                                                       Eigen::Index num_vertices);
+
 }  // namespace genflow

@@ -26,4 +26,15 @@ struct LaplacianEigenbasis {
 ///         area or more than 4000 vertices.
 [[nodiscard]] LaplacianEigenbasis laplacian_eigenbasis(const TriangleMesh& mesh);
 
+/// The `count` lowest eigenpairs only, for meshes of any size: Lanczos iterations (Spectra) on
+/// (K − σM)⁻¹M with σ a little below 0, K − σM factored once (CHOLMOD, else Eigen's
+/// SimplicialLDLT). `count` is capped at the number of vertices with mass; small meshes (where
+/// Lanczos would need nearly all vectors anyway) are solved densely and truncated. The same
+/// ordering, masses and M-orthonormal functions as the full basis; an eigenspace of several
+/// functions (a sphere's harmonics) comes as some orthonormal basis of it.
+/// \throws InvalidInput if the mesh is invalid or has zero area, or `count` is below 1.
+/// \throws SolverError if the iterations do not converge.
+[[nodiscard]] LaplacianEigenbasis laplacian_eigenbasis(const TriangleMesh& mesh,
+                                                       Eigen::Index count);
+
 }  // namespace genflow

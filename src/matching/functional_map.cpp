@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+#include "matching/functional_map.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+
+namespace genflow::detail {
+
+std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from, const Eigen::MatrixXd& to) {
+    // |a − b|² = |b|² − 2 a·b + |a|², the last the same for every b. Blocks of rows keep the
+    // distance matrix small on meshes of ten thousand vertices.
+    constexpr Eigen::Index kBlock = 1024;
+    const Eigen::RowVectorXd to_squared = to.rowwise().squaredNorm().transpose();
+    std::vector<Eigen::Index> nearest(static_cast<std::size_t>(from.rows()));
+    for (Eigen::Index begin = 0; begin < from.rows(); begin += kBlock) {
+        const Eigen::Index rows = std::min(kBlock, from.rows() - begin);
+        const Eigen::MatrixXd distance =
+            (-2 * from.middleRows(begin, rows) * to.transpose()).rowwise() + to_squared;
+        for (Eigen::Index i = 0; i < rows; ++i) {
+            distance.row(i).minCoeff(&nearest[static_cast<std::size_t>(begin + i)]);
+        }
+    }
+    return nearest;
+}
+
+Eigen::MatrixXd fitted_functional_map(const Eigen::MatrixXd& from_functions,
+                                      const Eigen::VectorXd& from_masses,
+                                      const Eigen::MatrixXd& to_functions,
+                                      const std::vector<Eigen::Index>& correspondence,
+                                      Eigen::Index size) {
+    return from_functions.leftCols(size).transpose() * from_masses.asDiagonal() *
+           to_functions(correspondence, Eigen::seqN(0, size));
+}
+
+std::vector<Eigen::Index> zoom_out(const Eigen::MatrixXd& from_functions,
+                                   const Eigen::VectorXd& from_masses,
+                                   const Eigen::MatrixXd& to_functions,
+                                   const Eigen::RowVectorXd& weights,
+                                   std::vector<Eigen::Index> correspondence, Eigen::Index first,
+                                   Eigen::Index count, Eigen::Index step) {
+    for (Eigen::Index size = std::min(first, count);;
+         size = std::min(size + std::max<Eigen::Index>(step, 1), count)) {
+        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
+            fitted_functional_map(from_functions, from_masses, to_functions, correspondence, size),
+            Eigen::ComputeFullU | Eigen::ComputeFullV);
+        const Eigen::MatrixXd orthogonal = svd.matrixU() * svd.matrixV().transpose();
+        const auto scaled = weights.head(size).asDiagonal();
+        correspondence = nearest_rows(from_functions.leftCols(size) * orthogonal * scaled,
+                                      to_functions.leftCols(size) * scaled);
+        if (size == count) {
+            return correspondence;
+        }
+    }
+}
+
+}  // namespace genflow::detail

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+// Functional maps between two shapes' Laplacian eigenbases (Ovsjanikov et al. 2012) and their
+// refinement by ZoomOut (Melzi et al. 2019): the steps SpectralDescriptors and
+// find_turned_parts() share.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace genflow::detail {
+
+/// For each row of `from`, the nearest row of `to` (brute force, by blocks of matrix products:
+/// a few thousand rows of a few dozen columns).
+[[nodiscard]] std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from,
+                                                     const Eigen::MatrixXd& to);
+
+/// The functional map C (size × size) fitted to a correspondence π (row of `from_functions` ->
+/// row of `to_functions`) in the M-weighted least-squares sense: ψ(π(i)) ≈ φ(i) C, which is
+/// C = φᵀ M ψ(π) as φ is M-orthonormal.
+[[nodiscard]] Eigen::MatrixXd fitted_functional_map(const Eigen::MatrixXd& from_functions,
+                                                    const Eigen::VectorXd& from_masses,
+                                                    const Eigen::MatrixXd& to_functions,
+                                                    const std::vector<Eigen::Index>& correspondence,
+                                                    Eigen::Index size);
+
+/// ZoomOut from `correspondence`: for sizes from `first` to `count` by `step` (and `count`
+/// itself), C fitted to the correspondence and made orthogonal (a near-isometry keeps the basis
+/// orthonormal), then the correspondence becomes that of nearest neighbours of φ C and ψ, both
+/// times `weights` (per function).
+[[nodiscard]] std::vector<Eigen::Index> zoom_out(const Eigen::MatrixXd& from_functions,
+                                                 const Eigen::VectorXd& from_masses,
+                                                 const Eigen::MatrixXd& to_functions,
+                                                 const Eigen::RowVectorXd& weights,
+                                                 std::vector<Eigen::Index> correspondence,
+                                                 Eigen::Index first, Eigen::Index count,
+                                                 Eigen::Index step = 1);
+
+}  // namespace genflow::detail
