@@ -32,6 +32,10 @@ Eigen::MatrixXd fitted_functional_map(const Eigen::MatrixXd& from_functions,
            to_functions(correspondence, Eigen::seqN(0, size));
 }
 
+Eigen::RowVectorXd embedding_weights(const Eigen::VectorXd& values) {
+    return values.array().max(1e-3 * values.maxCoeff()).rsqrt().matrix().transpose();
+}
+
 std::vector<Eigen::Index> zoom_out(const Eigen::MatrixXd& from_functions,
                                    const Eigen::VectorXd& from_masses,
                                    const Eigen::MatrixXd& to_functions,

@@ -23,6 +23,11 @@ namespace genflow::detail {
                                                     const std::vector<Eigen::Index>& correspondence,
                                                     Eigen::Index size);
 
+/// Per function, the weight 1/√λ_k of the embedding ZoomOut matches in (the low functions vary
+/// smoothly over whole parts, the high ones are noisier), with λ floored at 1/1000 of the
+/// largest (for meshes of several components, whose λ vanish).
+[[nodiscard]] Eigen::RowVectorXd embedding_weights(const Eigen::VectorXd& values);
+
 /// ZoomOut from `correspondence`: for sizes from `first` to `count` by `step` (and `count`
 /// itself), C fitted to the correspondence and made orthogonal (a near-isometry keeps the basis
 /// orthonormal), then the correspondence becomes that of nearest neighbours of φ C and ψ, both

@@ -672,10 +672,11 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         clock = std::chrono::steady_clock::now();
         const Level& level = pyramid[static_cast<std::size_t>(l)];
         const TriangleMesh moved = carry_to(l, current.V);
-        FlowResult flow = refines && l == count - 2 ? refine(l, moved)
-                                                    : flow_level(l, moved, options.fine_iterations,
-                                                                 best_start, options.prior);
-        if (refines && l == count - 2 && options.turn_back_parts && !cancelled) {
+        const bool refined_level = refines && l == count - 2;
+        FlowResult flow = refined_level ? refine(l, moved)
+                                        : flow_level(l, moved, options.fine_iterations, best_start,
+                                                     options.prior);
+        if (refined_level && options.turn_back_parts && !cancelled) {
             turn_back(l, flow);
         }
         result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));

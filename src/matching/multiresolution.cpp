@@ -14,27 +14,11 @@
 #include "genflow/operators/mesh_size.h"
 #include "genflow/operators/normals.h"
 #include "genflow/spatial/closest_point.h"
+#include "numerics/nearest_orthogonal.h"
 #include "operators/triangle.h"
 #include "spatial/point_index.h"
 
 namespace genflow {
-
-namespace {
-
-// The rotation nearest to A (its polar factor), or the identity when A vanishes.
-Eigen::Matrix3d polar_rotation(const Eigen::Matrix3d& A) {
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    if (!(svd.singularValues()[0] > 0)) {
-        return Eigen::Matrix3d::Identity();
-    }
-    Eigen::Matrix3d U = svd.matrixU();
-    if ((U * svd.matrixV().transpose()).determinant() < 0) {
-        U.col(2) *= -1;  // the nearest proper rotation
-    }
-    return U * svd.matrixV().transpose();
-}
-
-}  // namespace
 
 CoarseMesh coarsen(const TriangleMesh& mesh, Eigen::Index target_vertices) {
     detail::require_valid_mesh(mesh, "coarsen");
@@ -197,7 +181,7 @@ TriangleMesh transfer(const TriangleMesh& fine_rest, const TriangleMesh& coarse_
     std::vector<Eigen::Matrix3d> rotation(static_cast<std::size_t>(m));
     for (Eigen::Index b = 0; b < m; ++b) {
         rotation[static_cast<std::size_t>(b)] =
-            polar_rotation(covariance[static_cast<std::size_t>(b)]);
+            detail::nearest_orthogonal(covariance[static_cast<std::size_t>(b)]);
     }
     TriangleMesh result = fine_rest;
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -211,7 +195,8 @@ TriangleMesh transfer(const TriangleMesh& fine_rest, const TriangleMesh& coarse_
             blended += w * rotation[static_cast<std::size_t>(b)];
         }
         result.V.row(i) =
-            (base + polar_rotation(blended) * embedding.offset.row(i).transpose()).transpose();
+            (base + detail::nearest_orthogonal(blended) * embedding.offset.row(i).transpose())
+                .transpose();
     }
     return result;
 }

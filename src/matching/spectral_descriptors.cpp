@@ -163,9 +163,7 @@ std::vector<Eigen::Index> SpectralDescriptors::zoom_out(std::vector<Eigen::Index
 }
 
 Eigen::RowVectorXd SpectralDescriptors::function_weights(Eigen::Index count) const {
-    // Smooth over parts: ψ_k / √λ_k (with a floor, for meshes of several components).
-    const Eigen::ArrayXd values = target_values_.head(count).array();
-    return values.max(1e-3 * values.maxCoeff()).rsqrt().matrix().transpose();
+    return embedding_weights(target_values_.head(count));
 }
 
 PointDescriptors SpectralDescriptors::eigenfunction_descriptors(

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "matching/turned_parts.h"
 
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,6 +12,7 @@
 #include "genflow/operators/mesh_size.h"
 #include "matching/functional_map.h"
 #include "mesh/union_find.h"
+#include "numerics/nearest_orthogonal.h"
 #include "spatial/point_index.h"
 
 namespace genflow::detail {
@@ -44,14 +44,8 @@ OrthogonalFit orthogonal_fit(const Eigen::MatrixX3d& from, const Eigen::MatrixX3
                              bool reflection) {
     const Eigen::MatrixX3d a = from.rowwise() - from.colwise().mean();
     const Eigen::MatrixX3d b = to.rowwise() - to.colwise().mean();
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(a.transpose() * b,
-                                                Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Eigen::Matrix3d sign = Eigen::Matrix3d::Identity();
-    if (!reflection && (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0) {
-        sign(2, 2) = -1;
-    }
     OrthogonalFit fit;
-    fit.map = svd.matrixU() * sign * svd.matrixV().transpose();
+    fit.map = nearest_orthogonal(a.transpose() * b, !reflection);
     fit.residual = std::sqrt((a * fit.map - b).squaredNorm() / static_cast<double>(a.rows()));
     return fit;
 }
@@ -82,9 +76,7 @@ std::vector<TurnedPart> find_turned_parts(const TriangleMesh& template_rest,
         correspondence[static_cast<std::size_t>(i)] =
             target_points.nearest(deformed.row(i).transpose()).first;
     }
-    const Eigen::ArrayXd values = to.values.head(count).array();
-    const Eigen::RowVectorXd weights =
-        values.max(1e-3 * values.maxCoeff()).rsqrt().matrix().transpose();
+    const Eigen::RowVectorXd weights = embedding_weights(to.values.head(count));
     constexpr Eigen::Index kFirstSize = 10;
     constexpr Eigen::Index kStep = 5;
     const std::vector<Eigen::Index> mapped_vertex =
@@ -132,11 +124,10 @@ std::vector<TurnedPart> find_turned_parts(const TriangleMesh& template_rest,
         // The turn that explains the map best, refitted to the vertices it explains (a hand's
         // turn, not the partial one of the forearm it blends into).
         std::vector<Eigen::Index> core = vertices;
-        OrthogonalFit turn_fit;
         for (int round = 0; round < 3 && core.size() >= 4; ++round) {
             const Eigen::MatrixX3d from_core = deformed(core, Eigen::all);
             const Eigen::MatrixX3d to_core = mapped(core, Eigen::all);
-            turn_fit = orthogonal_fit(from_core, to_core, false);
+            const OrthogonalFit turn_fit = orthogonal_fit(from_core, to_core, false);
             const Eigen::RowVector3d from_centre = from_core.colwise().mean();
             const Eigen::RowVector3d to_centre = to_core.colwise().mean();
             std::vector<Eigen::Index> explained;
@@ -149,7 +140,8 @@ std::vector<TurnedPart> find_turned_parts(const TriangleMesh& template_rest,
             }
             core = std::move(explained);
         }
-        if (core.size() < 4 || from.masses(core).sum() < min_area) {
+        const double core_area = from.masses(core).sum();
+        if (core.size() < 4 || core_area < min_area) {
             continue;
         }
         const Eigen::MatrixX3d from_points = deformed(core, Eigen::all);
@@ -160,8 +152,7 @@ std::vector<TurnedPart> find_turned_parts(const TriangleMesh& template_rest,
         if (!(turn.angle() > options.min_angle)) {
             continue;
         }
-        const double part_area = from.masses(core).sum();
-        found.emplace_back(part_area, TurnedPart{std::move(core), from_points.colwise().mean(),
+        found.emplace_back(core_area, TurnedPart{std::move(core), from_points.colwise().mean(),
                                                  to_points.colwise().mean(), turn,
                                                  std::move(vertices), mapped_part});
     }

@@ -27,21 +27,21 @@ namespace {
 struct VerticesWithMass {
     Eigen::VectorXd masses;                 // of all vertices
     std::vector<Eigen::Index> kept;         // the vertices with mass
-    Eigen::VectorXi dense;                  // each vertex's index among `kept`, −1 if left out
     Eigen::SparseMatrix<double> stiffness;  // K restricted to `kept`
 };
 
-VerticesWithMass vertices_with_mass(const TriangleMesh& mesh, const char* caller) {
-    detail::require_valid_mesh(mesh, caller);
+VerticesWithMass vertices_with_mass(const TriangleMesh& mesh) {
+    detail::require_valid_mesh(mesh, "laplacian_eigenbasis");
     VerticesWithMass problem;
     problem.masses = lumped_masses(mesh, MassType::Barycentric);
     if (!(problem.masses.sum() > 0)) {
-        throw InvalidInput(std::string(caller) + ": the mesh has zero area");
+        throw InvalidInput("laplacian_eigenbasis: the mesh has zero area");
     }
-    problem.dense = Eigen::VectorXi::Constant(mesh.V.rows(), -1);
+    // Each vertex's index among `kept`, −1 if left out.
+    Eigen::VectorXi dense = Eigen::VectorXi::Constant(mesh.V.rows(), -1);
     for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
         if (problem.masses[i] > 0) {
-            problem.dense[i] = static_cast<int>(problem.kept.size());
+            dense[i] = static_cast<int>(problem.kept.size());
             problem.kept.push_back(i);
         }
     }
@@ -51,8 +51,8 @@ VerticesWithMass vertices_with_mass(const TriangleMesh& mesh, const char* caller
     entries.reserve(static_cast<std::size_t>(stiffness.nonZeros()));
     for (Eigen::Index col = 0; col < stiffness.outerSize(); ++col) {
         for (Eigen::SparseMatrix<double>::InnerIterator it(stiffness, col); it; ++it) {
-            const int r = problem.dense[it.row()];
-            const int c = problem.dense[it.col()];
+            const int r = dense[it.row()];
+            const int c = dense[it.col()];
             if (r >= 0 && c >= 0) {
                 entries.emplace_back(r, c, it.value());
             }
@@ -102,19 +102,22 @@ private:
     detail::SpdSolver solver_;
 };
 
-}  // namespace
-
-LaplacianEigenbasis laplacian_eigenbasis(const TriangleMesh& mesh) {
-    constexpr Eigen::Index kMaxVertices = 4000;  // a dense eigen-solve of 4000² takes a minute
+// The dense solve's bound (a dense eigen-solve of 4000² takes a minute): larger meshes are
+// refused, after their validation.
+void require_dense_size(const TriangleMesh& mesh) {
+    constexpr Eigen::Index kMaxVertices = 4000;
     if (mesh.V.rows() > kMaxVertices) {
         detail::require_valid_mesh(mesh, "laplacian_eigenbasis");
         throw InvalidInput("laplacian_eigenbasis: " + std::to_string(mesh.V.rows()) +
                            " vertices, at most " + std::to_string(kMaxVertices) +
                            " (coarsen the mesh first, or ask for the lowest eigenpairs only)");
     }
-    const VerticesWithMass problem = vertices_with_mass(mesh, "laplacian_eigenbasis");
+}
+
+// All eigenpairs of `problem` (a mesh of `vertices` vertices), by a dense solve of
+// K φ = λ M φ as the standard problem M^{-1/2} K M^{-1/2} ψ = λ ψ, φ = M^{-1/2} ψ.
+LaplacianEigenbasis dense_basis(const VerticesWithMass& problem, Eigen::Index vertices) {
     const auto n = static_cast<Eigen::Index>(problem.kept.size());
-    // K φ = λ M φ as the standard problem M^{-1/2} K M^{-1/2} ψ = λ ψ, φ = M^{-1/2} ψ.
     Eigen::VectorXd inverse_root(n);
     for (Eigen::Index k = 0; k < n; ++k) {
         inverse_root[k] = 1 / std::sqrt(problem.masses[problem.kept[static_cast<std::size_t>(k)]]);
@@ -129,8 +132,15 @@ LaplacianEigenbasis laplacian_eigenbasis(const TriangleMesh& mesh) {
     basis.masses = problem.masses;
     basis.values = eigen.eigenvalues().cwiseMax(0);  // K is PSD: below 0 is rounding
     basis.functions =
-        on_all_vertices(problem, inverse_root.asDiagonal() * eigen.eigenvectors(), mesh.V.rows());
+        on_all_vertices(problem, inverse_root.asDiagonal() * eigen.eigenvectors(), vertices);
     return basis;
+}
+
+}  // namespace
+
+LaplacianEigenbasis laplacian_eigenbasis(const TriangleMesh& mesh) {
+    require_dense_size(mesh);
+    return dense_basis(vertices_with_mass(mesh), mesh.V.rows());
 }
 
 LaplacianEigenbasis laplacian_eigenbasis(const TriangleMesh& mesh, Eigen::Index count) {
@@ -138,14 +148,15 @@ LaplacianEigenbasis laplacian_eigenbasis(const TriangleMesh& mesh, Eigen::Index 
         throw InvalidInput("laplacian_eigenbasis: asked for " + std::to_string(count) +
                            " eigenpairs, at least 1");
     }
-    const VerticesWithMass problem = vertices_with_mass(mesh, "laplacian_eigenbasis");
+    const VerticesWithMass problem = vertices_with_mass(mesh);
     const auto n = static_cast<Eigen::Index>(problem.kept.size());
     count = std::min(count, n);
     // Lanczos keeps about twice the wanted vectors; when that is most of the space, or the mesh
     // is small anyway, the dense solve is as fast and exact.
     const Eigen::Index vectors = std::min(n, std::max(2 * count + 1, count + 20));
     if (vectors >= n || n <= 400) {
-        LaplacianEigenbasis basis = laplacian_eigenbasis(mesh);
+        require_dense_size(mesh);
+        LaplacianEigenbasis basis = dense_basis(problem, mesh.V.rows());
         basis.values.conservativeResize(count);
         basis.functions.conservativeResize(Eigen::NoChange, count);
         return basis;
