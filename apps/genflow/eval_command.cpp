@@ -4,6 +4,7 @@
 // ground truth as a Markdown table (or JSON).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -20,6 +21,7 @@
 #include "genflow/io/read_part_model.h"
 #include "genflow/matching/correspondence_error.h"
 #include "genflow/matching/match.h"
+#include "genflow/matching/multiresolution.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/surface_distance.h"
 
@@ -58,6 +60,30 @@ std::string field(const std::filesystem::path& file, const nlohmann::json& pair,
     return pair[key].get<std::string>();
 }
 
+// The pair's target: its "target_remeshed" file, or else the ground truth simplified to the
+// share "target_simplified" of its vertices (quadric collapses onto kept vertices: another
+// sampling and connectivity than the template's, on the same surface), so that any two poses
+// of a subject make a pair without a remesher.
+TriangleMesh target_of(const std::filesystem::path& file, const std::filesystem::path& base,
+                       const std::string& name, const nlohmann::json& pair,
+                       const TriangleMesh& truth) {
+    if (pair.contains("target_remeshed")) {
+        return read_mesh(base / field(file, pair, "target_remeshed"));
+    }
+    const auto share = pair.find("target_simplified");
+    if (share == pair.end()) {
+        throw IoError(file.string() + ": pair " + name +
+                      " has neither \"target_remeshed\" nor \"target_simplified\"");
+    }
+    if (!share->is_number() || !(share->get<double>() > 0 && share->get<double>() <= 1)) {
+        throw IoError(file.string() + ": pair " + name +
+                      ": \"target_simplified\" must be a share of the vertices in (0, 1]");
+    }
+    const auto vertices = static_cast<Eigen::Index>(
+        std::ceil(share->get<double>() * static_cast<double>(truth.V.rows())));
+    return coarsen(truth, std::max<Eigen::Index>(vertices, 4)).mesh;
+}
+
 void run_eval(const EvalOptions& options) {
     const std::filesystem::path file(options.pairs);
     const nlohmann::json pairs = read_pairs(file);
@@ -77,8 +103,8 @@ void run_eval(const EvalOptions& options) {
             continue;
         }
         const TriangleMesh template_mesh = read_mesh(base / field(file, pair, "template"));
-        const TriangleMesh target = read_mesh(base / field(file, pair, "target_remeshed"));
         const TriangleMesh truth = read_mesh(base / field(file, pair, "target_ground_truth"));
+        const TriangleMesh target = target_of(file, base, name, pair, truth);
         if (truth.V.rows() != template_mesh.V.rows()) {
             throw IoError(file.string() + ": pair " + name +
                           ": the ground truth has another vertex count than the template");
@@ -150,7 +176,9 @@ void register_eval_command(CLI::App& app) {
     auto* command = app.add_subcommand(
         "eval",
         "Match every pair of a pairs.json (template, remeshed target, ground-truth target) "
-        "with each prior and print the correspondence error against the ground truth");
+        "with each prior and print the correspondence error against the ground truth; a pair "
+        "may give \"target_simplified\": SHARE instead of a remeshed target, to match the "
+        "ground truth simplified to that share of its vertices");
     command->add_option("pairs", options->pairs, "pairs.json (the format of $GENFLOW_DATA)")
         ->required();
     command

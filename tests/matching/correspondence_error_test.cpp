@@ -4,9 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
+#include <numeric>
+#include <queue>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
 
 #include "genflow/exceptions.h"
 #include "genflow/mesh/primitives.h"
@@ -160,6 +168,106 @@ TEST(CorrespondenceError, APartPutBackToFrontHasItsFacesReversed) {
     EXPECT_EQ(all.stranded_count, 0);
     EXPECT_EQ(all.reversed_count, truth.F.rows());
     EXPECT_NEAR(all.reversed_area, 1, 1e-12);
+}
+
+// The chords between vertices at most two edges apart, which correspondence_error() walks.
+std::vector<std::set<Eigen::Index>> chords(const TriangleMesh& mesh) {
+    const auto n = static_cast<std::size_t>(mesh.V.rows());
+    std::vector<std::set<Eigen::Index>> ring(n);
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        for (int k = 0; k < 3; ++k) {
+            ring[static_cast<std::size_t>(mesh.F(f, k))].insert(mesh.F(f, (k + 1) % 3));
+            ring[static_cast<std::size_t>(mesh.F(f, (k + 1) % 3))].insert(mesh.F(f, k));
+        }
+    }
+    std::vector<std::set<Eigen::Index>> reach(n);
+    for (std::size_t v = 0; v < n; ++v) {
+        for (const Eigen::Index w : ring[v]) {
+            reach[v].insert(w);
+            reach[v].insert(ring[static_cast<std::size_t>(w)].begin(),
+                            ring[static_cast<std::size_t>(w)].end());
+        }
+        reach[v].erase(static_cast<Eigen::Index>(v));
+    }
+    return reach;
+}
+
+// The path lengths from `source` over those chords, by a full Dijkstra.
+std::vector<double> chord_distances(const TriangleMesh& mesh,
+                                    const std::vector<std::set<Eigen::Index>>& reach,
+                                    Eigen::Index source) {
+    std::vector<double> distance(reach.size(), std::numeric_limits<double>::infinity());
+    using Entry = std::pair<double, Eigen::Index>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+    distance[static_cast<std::size_t>(source)] = 0;
+    queue.emplace(0.0, source);
+    while (!queue.empty()) {
+        const auto [d, v] = queue.top();
+        queue.pop();
+        if (d > distance[static_cast<std::size_t>(v)]) {
+            continue;
+        }
+        for (const Eigen::Index w : reach[static_cast<std::size_t>(v)]) {
+            const double through = d + (mesh.V.row(v) - mesh.V.row(w)).norm();
+            if (through < distance[static_cast<std::size_t>(w)]) {
+                distance[static_cast<std::size_t>(w)] = through;
+                queue.emplace(through, w);
+            }
+        }
+    }
+    return distance;
+}
+
+// Every vertex put where another one is, at random: the landmarks' bounds and the search they
+// steer decide each one as a full search does (stranded when the path is longer than both the
+// strand length and twice the straight distance).
+TEST(CorrespondenceError, VerticesPutOnOthersAreJudgedAsByAFullSearch) {
+    const TriangleMesh truth = folded_strip();
+    const double diagonal = bounding_box_diagonal(truth);
+    std::vector<Eigen::Index> other(static_cast<std::size_t>(truth.V.rows()));
+    std::iota(other.begin(), other.end(), Eigen::Index{0});
+    std::shuffle(other.begin(), other.end(), std::mt19937(5));
+    const Eigen::MatrixX3d deformed = truth.V(other, Eigen::all);
+    const CorrespondenceError error = correspondence_error(deformed, truth);
+    const std::vector<std::set<Eigen::Index>> reach = chords(truth);
+    int stranded = 0;
+    int kept = 0;
+    for (Eigen::Index i = 0; i < truth.V.rows(); i += 13) {
+        const Eigen::Index j = other[static_cast<std::size_t>(i)];
+        const double straight = (truth.V.row(j) - truth.V.row(i)).norm();
+        const double path = chord_distances(truth, reach, i)[static_cast<std::size_t>(j)];
+        const bool expected = path > std::max(0.1 * diagonal, 2 * straight);
+        EXPECT_EQ(error.stranded[static_cast<std::size_t>(i)], expected) << i;
+        (expected ? stranded : kept) += 1;
+    }
+    // Both outcomes are exercised: across the fold, and along a sheet.
+    EXPECT_GT(stranded, 40);
+    EXPECT_GT(kept, 40);
+}
+
+// No path joins two separate shapes: a vertex put on the other one is stranded however near.
+TEST(CorrespondenceError, AVertexPutOnAnotherComponentIsStranded) {
+    const TriangleMesh sphere = make_icosphere(3);
+    const Eigen::Index n = sphere.V.rows();
+    TriangleMesh truth;
+    truth.V.resize(2 * n, 3);
+    truth.V << sphere.V, sphere.V.rowwise() + Eigen::RowVector3d(2.1, 0, 0);
+    truth.F.resize(2 * sphere.F.rows(), 3);
+    truth.F << sphere.F, sphere.F.array() + static_cast<int>(n);
+    Eigen::MatrixX3d deformed = truth.V;
+    int moved = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        if (sphere.V(i, 0) > 0.9) {  // the cap of the first sphere facing the second, 0.1 away
+            deformed.row(i) = truth.V.row(i) + Eigen::RowVector3d(0.2, 0, 0);
+            ++moved;
+        }
+    }
+    ASSERT_GT(moved, 10);
+    const CorrespondenceError error = correspondence_error(deformed, truth);
+    EXPECT_EQ(error.stranded_count, moved);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        EXPECT_EQ(error.stranded[static_cast<std::size_t>(i)], sphere.V(i, 0) > 0.9) << i;
+    }
 }
 
 TEST(CorrespondenceError, RefusesMismatchedOrNonFiniteInput) {

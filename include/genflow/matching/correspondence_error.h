@@ -53,9 +53,11 @@ struct CorrespondenceError {
 
 /// Measures `deformed` (#V×3, the template's vertices after a match) against `truth`. A vertex
 /// is placed on the ground-truth surface point nearest to it; its path from g_i is walked over
-/// the chords between vertices of `truth` at most two edges apart (Dijkstra from vertex i,
-/// stopped at the bound that decides, then straight from a corner of the face reached), which
-/// follows the surface closely even on long thin triangles, where paths along the edges zigzag.
+/// the chords between vertices of `truth` at most two edges apart (to a corner of the face
+/// reached, then straight), which follows the surface closely even on long thin triangles,
+/// where paths along the edges zigzag. Each vertex is decided by the bounds that 32 landmark
+/// vertices give on path lengths where they suffice, else by an A* search towards the face that
+/// stops at the bound that decides; a match gone wrong takes about as long as a good one.
 /// Faces are compared by their normals in `deformed` and in `truth` (`truth`'s faces index
 /// both). Uses both cores when OpenMP is available.
 /// \throws InvalidInput if the vertex counts differ, a point is not finite, `truth` has no face

@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: MIT
+// genflow eval end to end on a generated pair file, and its refusals.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "cli/cli_runner.h"
+#include "genflow/io/write_mesh.h"
+#include "genflow/matching/rigid_alignment.h"
+#include "genflow/mesh/primitives.h"
+
+namespace genflow {
+namespace {
+
+using test::quoted;
+using test::run_genflow;
+
+// A limb and the same limb moved rigidly (its ground truth), in `directory`, with a pair file
+// whose one pair has `target` for its target (a "target_remeshed" file, a
+// "target_simplified" share, or neither).
+std::filesystem::path write_pair(const std::filesystem::path& directory,
+                                 const nlohmann::json& target) {
+    const TriangleMesh limb = make_limb(3);
+    Similarity motion;
+    motion.rotation = Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    motion.translation = Eigen::Vector3d(0.5, -1, 2);
+    write_mesh(directory / "template.ply", limb);
+    write_mesh(directory / "truth.ply", TriangleMesh{motion.apply(limb.V), limb.F});
+    TriangleMesh resampled = make_limb(3, 3);
+    resampled.V = motion.apply(resampled.V);
+    write_mesh(directory / "resampled.obj", resampled);
+    nlohmann::json pair = {
+        {"name", "limb"}, {"template", "template.ply"}, {"target_ground_truth", "truth.ply"}};
+    pair.update(target);
+    const std::filesystem::path file = directory / "pairs.json";
+    std::ofstream(file) << nlohmann::json::array({pair}).dump();
+    return file;
+}
+
+TEST(EvalCli, MatchesAPairAgainstItsRemeshedTarget) {
+    const test::TemporaryDirectory directory;
+    const auto file = write_pair(directory.path(), {{"target_remeshed", "resampled.obj"}});
+    const auto result = run_genflow("eval " + quoted(file) + " --priors rigid --json");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto rows = nlohmann::json::parse(result.out);
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_EQ(rows[0]["pair"], "limb");
+    EXPECT_EQ(rows[0]["prior"], "rigid");
+    EXPECT_LT(rows[0]["mean"].template get<double>(), 0.02);
+    EXPECT_EQ(rows[0]["stranded_vertices"], 0);
+}
+
+TEST(EvalCli, MatchesAPairAgainstItsGroundTruthSimplified) {
+    const test::TemporaryDirectory directory;
+    const auto file = write_pair(directory.path(), {{"target_simplified", 0.6}});
+    // As a table this time: the pair's row and its mean error, below 2 %.
+    const auto result = run_genflow("eval " + quoted(file) + " --priors rigid");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const std::size_t row = result.out.find("| limb | rigid | ");
+    ASSERT_NE(row, std::string::npos) << result.out;
+    std::istringstream cells(result.out.substr(row + 17));
+    double mean = 100;
+    std::string percent;
+    cells >> mean >> percent;
+    EXPECT_LT(mean, 2) << result.out;
+    EXPECT_EQ(percent, "%");
+}
+
+TEST(EvalCli, RefusesAPairWithoutATargetOrWithABadShare) {
+    for (const nlohmann::json& target :
+         {nlohmann::json::object(), nlohmann::json{{"target_simplified", 1.5}},
+          nlohmann::json{{"target_simplified", "half"}}}) {
+        const test::TemporaryDirectory directory;
+        const auto file = write_pair(directory.path(), target);
+        const auto result = run_genflow("eval " + quoted(file) + " --priors rigid");
+        EXPECT_EQ(result.exit_code, 2) << target.dump();
+        EXPECT_NE(result.err.find("pairs.json: pair limb"), std::string::npos) << result.err;
+    }
+}
+
+}  // namespace
+}  // namespace genflow
