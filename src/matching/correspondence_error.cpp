@@ -21,9 +21,11 @@ namespace genflow {
 
 namespace {
 
-// Landmarks for the path bounds: each costs a Dijkstra over the whole shape (16 on TOSCA
-// michael's 52565 vertices: about 0.5 s on two cores).
-constexpr int kLandmarks = 64;
+// Landmarks for the path bounds, each a Dijkstra over the whole shape. Measured on TOSCA
+// michael (52565 vertices, two cores), a good match (9 vertices stranded) and one gone wrong
+// (11820): 1.9 and 126 s with a bounded Dijkstra from every vertex; with 16 landmarks 0.9 and
+// 7.7 s, 32 0.7 and 6.3 s, 64 1.1 and 3.2 s.
+constexpr int kLandmarks = 32;
 
 // The surface paths are walked over chords between vertices at most two edges apart: on long
 // thin triangles, paths along the edges zigzag (on the demo's limb up to 3.8 times the straight
