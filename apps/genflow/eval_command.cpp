@@ -134,15 +134,19 @@ void run_eval(const EvalOptions& options) {
             const CorrespondenceError error = correspondence_error(result.deformed.V, truth);
             const double hausdorff =
                 surface_distances(result.deformed, target).hausdorff / diagonal;
-            const nlohmann::json row = {{"pair", name},
-                                        {"prior", prior_name},
-                                        {"mean", error.mean},
-                                        {"median", error.median},
-                                        {"max", error.max},
-                                        {"stranded_vertices", error.stranded_count},
-                                        {"reversed_area", error.reversed_area},
-                                        {"hausdorff", hausdorff},
-                                        {"seconds", result.seconds}};
+            const nlohmann::json row = {
+                {"pair", name},
+                {"prior", prior_name},
+                {"mean", error.mean},
+                {"median", error.median},
+                {"max", error.max},
+                {"stranded_vertices", error.stranded_count},
+                {"reversed_area", error.reversed_area},
+                {"hausdorff", hausdorff},
+                {"intrinsic_disagreement", result.intrinsic_disagreement
+                                               ? nlohmann::json(*result.intrinsic_disagreement)
+                                               : nlohmann::json()},
+                {"seconds", result.seconds}};
             rows.push_back(row);
             if (!options.json) {
                 std::printf(

@@ -2,6 +2,7 @@
 // genflow match TEMPLATE TARGET -o OUT: deform a template onto another pose of the same subject
 // (genflow/matching/match.h) and report how close it got.
 #include <cstdio>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -107,6 +108,13 @@ void run_match(const MatchCommandOptions& options) {
     job.options.turn_back_parts = !options.no_turn_back;
     job.progress_bar = !options.json && !options.quiet;
     const nlohmann::json summary = run_match_job(std::move(job));
+    if (summary["doubtful"].get<bool>()) {
+        std::cerr << "warning: " << options.target_path
+                  << ": the match disagrees with the target's intrinsic shape (" << std::fixed
+                  << std::setprecision(2) << summary["intrinsic_disagreement"].get<double>()
+                  << ", above " << kDoubtfulDisagreement
+                  << "): parts may sit on the wrong limb; check the result\n";
+    }
     if (options.json) {
         std::cout << summary.dump(2) << '\n';
         return;

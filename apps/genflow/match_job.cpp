@@ -66,6 +66,10 @@ nlohmann::json run_match_job(MatchJob job) {
         {"eigenfunction_guidance", result.eigenfunction_guidance},
         {"refinement_guidance", result.refinement_guidance},
         {"turned_parts", result.turned_parts},
+        {"intrinsic_disagreement", result.intrinsic_disagreement
+                                       ? nlohmann::json(*result.intrinsic_disagreement)
+                                       : nlohmann::json()},
+        {"doubtful", result.doubtful()},
         {"hausdorff", distances.hausdorff},
         {"mean_distance", distances.mean},
         {"target_bbox_diagonal", diagonal},

@@ -275,6 +275,10 @@ std::vector<std::size_t> choose_starts(const std::vector<FlowResult>& flows,
 
 }  // namespace
 
+bool MatchResult::doubtful() const {
+    return intrinsic_disagreement && *intrinsic_disagreement > kDoubtfulDisagreement;
+}
+
 MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                   const MatchOptions& options) {
     check_inputs(template_mesh, target, options);
@@ -579,6 +583,9 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     result.initial_alignment = best_start;
     result.levels.push_back(
         report(best.mesh, coarsest, best, pyramid_seconds + seconds_since(clock)));
+    if (spectral) {
+        result.intrinsic_disagreement = disagreement(*spectral, best.mesh.V);
+    }
 
     // Level l's template carried from the deformed level l + 1 (both at rest placed by the
     // chosen start).

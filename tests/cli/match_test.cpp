@@ -47,6 +47,8 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_LT(json["hausdorff_over_diagonal"].get<double>(), 0.05);
     EXPECT_EQ(json["levels"].size(), 1u);
     EXPECT_EQ(json["turned_parts"], 0);  // the rigid prior has no refinement to turn back
+    EXPECT_GT(json["intrinsic_disagreement"].get<double>(), 0);
+    EXPECT_EQ(json["doubtful"], false);
     EXPECT_LT(json["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.02);
     EXPECT_EQ(json["stranded_vertices"], 0);
     EXPECT_TRUE(json["stranded_vertex_indices"].empty());

@@ -453,6 +453,10 @@ TEST(SpectralDescriptors, TellTheRightPlacementFromAFlippedOne) {
     EXPECT_LT(consistent, 1.1);
     EXPECT_LT(folded, 0.85 * consistent) << consistent << " " << folded;
     EXPECT_THROW((void)signatures.map_consistency(pair.truth.topRows(10)), InvalidInput);
+    // Their ratio, a match's intrinsic disagreement, doubts the flipped placement only
+    // (measured 0.18 against 0.70).
+    EXPECT_LT(right / consistent, kDoubtfulDisagreement);
+    EXPECT_GT(flipped / folded, kDoubtfulDisagreement);
 }
 
 // The descriptors are the log signatures, centred and scaled per time so that the template's
@@ -593,6 +597,16 @@ TEST(Match, GuidanceReportsThePlainDistanceAndMatchesTheLimb) {
     }
     // The eigenfunctions' flows come on top: two more on the coarsest level.
     EXPECT_GT(both.levels.front().iterations, signatures.levels.front().iterations);
+    // Guided, the match reports how far it disagrees with the target intrinsically: for this
+    // right match, too little to doubt it. Unguided from one start, it measures nothing.
+    EXPECT_FALSE(plain.intrinsic_disagreement.has_value());
+    EXPECT_FALSE(plain.doubtful());
+    for (const MatchResult* guided : {&signatures, &both}) {
+        ASSERT_TRUE(guided->intrinsic_disagreement.has_value());
+        EXPECT_GT(*guided->intrinsic_disagreement, 0);
+        EXPECT_LT(*guided->intrinsic_disagreement, kDoubtfulDisagreement);
+        EXPECT_FALSE(guided->doubtful());
+    }
 }
 
 // The stretching energy in the last guided round keeps the template's edges nearer their

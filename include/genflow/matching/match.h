@@ -269,6 +269,14 @@ struct MatchLevel {
 };
 
 /// What match() did, for the report.
+/// Above this intrinsic disagreement (MatchResult::intrinsic_disagreement) a match is doubtful.
+/// Measured with h1 on the 12 pairs of $GENFLOW_DATA/pairs.json and the 17 of
+/// docs/eval/other_poses.json: 0.045–0.24 on every match below 3.7 % mean error; 0.39 and 0.57
+/// on the one that failed (TOSCA michael kneeling, 15 % off, an arm on a leg; two
+/// simplifications of its target one vertex apart). With the articulated prior, 0.09–0.31 on
+/// its 11 results, up to 4 % off.
+inline constexpr double kDoubtfulDisagreement = 0.35;
+
 struct MatchResult {
     TriangleMesh deformed;           ///< the template, deformed (its connectivity unchanged)
     Similarity initial_alignment;    ///< the rigid start (identity without `align`)
@@ -285,8 +293,17 @@ struct MatchResult {
     double refinement_guidance = 0;
     /// How many parts MatchOptions::turn_back_parts turned back.
     int turned_parts = 0;
+    /// How far the coarsest level's result disagrees with the target intrinsically (the
+    /// median heat-kernel-signature discrepancy of where its vertices landed, over the
+    /// consistency of the functional map that placement implies; the measure that chooses
+    /// between starts and stiffnesses), when it was computed: with several rigid starts or a
+    /// guided prior. No ground truth is needed, so it can warn of any match (doubtful()).
+    std::optional<double> intrinsic_disagreement;
     double alignment_seconds = 0;
     double seconds = 0;  ///< everything
+    /// True if intrinsic_disagreement is above kDoubtfulDisagreement: the match is likely to
+    /// have put parts on the wrong limb.
+    [[nodiscard]] bool doubtful() const;
     /// True if the finest level's flow stopped on its own (stagnation or no descent left).
     [[nodiscard]] bool converged() const {
         return !levels.empty() && levels.back().status == FlowStatus::Converged;
