@@ -268,7 +268,6 @@ struct MatchLevel {
     double seconds = 0;  ///< pyramid, transfer and flow of this level
 };
 
-/// What match() did, for the report.
 /// Above this intrinsic disagreement (MatchResult::intrinsic_disagreement) a match is doubtful.
 /// Measured with h1 on the 12 pairs of $GENFLOW_DATA/pairs.json and the 17 of
 /// docs/eval/other_poses.json: 0.045–0.24 on every match below 3.7 % mean error; 0.39 and 0.57
@@ -277,6 +276,7 @@ struct MatchLevel {
 /// its 11 results, up to 4 % off.
 inline constexpr double kDoubtfulDisagreement = 0.35;
 
+/// What match() did, for the report.
 struct MatchResult {
     TriangleMesh deformed;           ///< the template, deformed (its connectivity unchanged)
     Similarity initial_alignment;    ///< the rigid start (identity without `align`)
