@@ -46,4 +46,14 @@ void create_frames_directory(const std::filesystem::path& directory) {
     }
 }
 
+void add_second_opinion_option(CLI::App& command, double& threshold) {
+    command
+        .add_option("--second-opinion-above", threshold,
+                    "Match the coarsest level again from an intrinsic start (extremities "
+                    "matched by geodesic distances) when the result's intrinsic disagreement "
+                    "is above this, and keep the result that disagrees less (0 = always)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+}
+
 }  // namespace genflow::cli

@@ -3,6 +3,7 @@
 // validate, refuse with one line), and the exception that carries an exit code.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -40,5 +41,8 @@ std::string frame_name(int step);
 
 /// Creates `directory` (and its parents) for --frames; throws IoError naming it on failure.
 void create_frames_directory(const std::filesystem::path& directory);
+
+/// `--second-opinion-above X` (MatchOptions::second_opinion_above), shared by match and eval.
+void add_second_opinion_option(CLI::App& command, double& threshold);
 
 }  // namespace genflow::cli

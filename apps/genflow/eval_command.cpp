@@ -34,6 +34,7 @@ struct EvalOptions {
     std::vector<std::string> priors{"h1", "rigid", "articulated"};
     std::vector<std::string> only;  // pair names; empty: all
     std::string data_dir;           // paths in the pairs are relative to it (default: the file's)
+    double second_opinion_above = kDoubtfulDisagreement;
     bool json = false;
 };
 
@@ -130,6 +131,7 @@ void run_eval(const EvalOptions& options) {
             MatchOptions match_options;
             match_options.prior = prior;
             match_options.parts = parts;
+            match_options.second_opinion_above = options.second_opinion_above;
             const MatchResult result = match(template_mesh, target, match_options);
             const CorrespondenceError error = correspondence_error(result.deformed.V, truth);
             const double hausdorff =
@@ -146,6 +148,7 @@ void run_eval(const EvalOptions& options) {
                 {"intrinsic_disagreement", result.intrinsic_disagreement
                                                ? nlohmann::json(*result.intrinsic_disagreement)
                                                : nlohmann::json()},
+                {"second_opinion", result.second_opinion},
                 {"seconds", result.seconds}};
             rows.push_back(row);
             if (!options.json) {
@@ -193,6 +196,7 @@ void register_eval_command(CLI::App& app) {
     command->add_option("--pairs", options->only, "Only these pairs (names)")->delimiter(',');
     command->add_option("--data-dir", options->data_dir,
                         "Directory the paths in the file are relative to (default: the file's)");
+    add_second_opinion_option(*command, options->second_opinion_above);
     command->add_flag("--json", options->json, "Print JSON instead of a table");
     command->callback([options] { run_eval(*options); });
 }

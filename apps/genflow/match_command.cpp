@@ -262,6 +262,7 @@ void register_match_command(CLI::App& app) {
                      "Steps of each guided refining flow")
         ->check(CLI::Range(0, 100000))
         ->capture_default_str();
+    add_second_opinion_option(*command, options->match.second_opinion_above);
     command->add_flag("--no-turn-back", options->no_turn_back,
                       "Do not turn back the parts that a fine functional map (60 eigenfunctions) "
                       "places turned over in their own place (a hand palm for back) after the "

@@ -70,6 +70,7 @@ nlohmann::json run_match_job(MatchJob job) {
                                        ? nlohmann::json(*result.intrinsic_disagreement)
                                        : nlohmann::json()},
         {"doubtful", result.doubtful()},
+        {"second_opinion", result.second_opinion},
         {"hausdorff", distances.hausdorff},
         {"mean_distance", distances.mean},
         {"target_bbox_diagonal", diagonal},

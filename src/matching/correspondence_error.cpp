@@ -16,6 +16,7 @@
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/closest_point.h"
 #include "operators/triangle.h"
+#include "spatial/surface_paths.h"
 
 namespace genflow {
 
@@ -27,40 +28,8 @@ namespace {
 // 7.7 s, 32 0.7 and 6.3 s, 64 1.1 and 3.2 s.
 constexpr int kLandmarks = 32;
 
-// The surface paths are walked over chords between vertices at most two edges apart: on long
-// thin triangles, paths along the edges zigzag (on the demo's limb up to 3.8 times the straight
-// distance between points 1.4 % of the diagonal apart: 163 of its vertices were counted
-// stranded by a match 2 % off on average; none with the chords).
-struct Neighbour {
-    Eigen::Index vertex;
-    double length;
-};
-
-std::vector<std::vector<Neighbour>> chord_graph(const TriangleMesh& mesh) {
-    const auto n = static_cast<std::size_t>(mesh.V.rows());
-    const std::vector<std::vector<Eigen::Index>> ring = vertex_neighbours(mesh.F, mesh.V.rows());
-    std::vector<std::vector<Neighbour>> graph(n);
-    std::vector<Eigen::Index> stamp(n, -1);
-    for (std::size_t a = 0; a < n; ++a) {
-        std::vector<Eigen::Index> frontier{static_cast<Eigen::Index>(a)};
-        stamp[a] = static_cast<Eigen::Index>(a);
-        for (int r = 0; r < 2; ++r) {
-            std::vector<Eigen::Index> next;
-            for (const Eigen::Index v : frontier) {
-                for (const Eigen::Index w : ring[static_cast<std::size_t>(v)]) {
-                    if (stamp[static_cast<std::size_t>(w)] != static_cast<Eigen::Index>(a)) {
-                        stamp[static_cast<std::size_t>(w)] = static_cast<Eigen::Index>(a);
-                        next.push_back(w);
-                        graph[a].push_back(
-                            {w, (mesh.V.row(static_cast<Eigen::Index>(a)) - mesh.V.row(w)).norm()});
-                    }
-                }
-            }
-            frontier = std::move(next);
-        }
-    }
-    return graph;
-}
+using detail::Chord;
+using detail::ChordGraph;
 
 // Lower and upper bounds on path lengths in the chord graph from a few landmark vertices
 // (A*, landmarks and the triangle inequality: Goldberg and Harrelson, SODA 2005): d(a, b) is at
@@ -72,8 +41,7 @@ class Landmarks {
 public:
     static constexpr double kFar = std::numeric_limits<double>::infinity();
 
-    Landmarks(const TriangleMesh& mesh, const std::vector<std::vector<Neighbour>>& graph, int count)
-        : mesh_(mesh) {
+    Landmarks(const TriangleMesh& mesh, const ChordGraph& graph, int count) : mesh_(mesh) {
         // Spread over the shape by farthest-point sampling in space (cheap, and the graph
         // distances are computed from them side by side below).
         const Eigen::Index n = mesh.V.rows();
@@ -90,7 +58,8 @@ public:
         distance_.resize(n, static_cast<Eigen::Index>(chosen.size()));
 #pragma omp parallel for schedule(dynamic, 1)
         for (std::ptrdiff_t l = 0; l < static_cast<std::ptrdiff_t>(chosen.size()); ++l) {
-            distance_.col(l) = distances_from(graph, chosen[static_cast<std::size_t>(l)]);
+            distance_.col(l) =
+                detail::path_lengths_from(graph, chosen[static_cast<std::size_t>(l)]);
         }
     }
 
@@ -119,30 +88,6 @@ public:
 private:
     const TriangleMesh& mesh_;
     Eigen::MatrixXd distance_;  // vertex × landmark
-
-    static Eigen::VectorXd distances_from(const std::vector<std::vector<Neighbour>>& graph,
-                                          Eigen::Index source) {
-        Eigen::VectorXd distance =
-            Eigen::VectorXd::Constant(static_cast<Eigen::Index>(graph.size()), kFar);
-        using Entry = std::pair<double, Eigen::Index>;
-        std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-        distance(source) = 0;
-        queue.emplace(0.0, source);
-        while (!queue.empty()) {
-            const auto [d, v] = queue.top();
-            queue.pop();
-            if (d > distance(v)) {
-                continue;
-            }
-            for (const Neighbour& n : graph[static_cast<std::size_t>(v)]) {
-                if (d + n.length < distance(n.vertex)) {
-                    distance(n.vertex) = d + n.length;
-                    queue.emplace(d + n.length, n.vertex);
-                }
-            }
-        }
-        return distance;
-    }
 };
 
 // Whether `point` (on face `face` of `mesh`) is within `bound` of vertex `source` along the
@@ -153,8 +98,7 @@ private:
 // `distance_` holds +∞ for every vertex on entry and on return.
 class BoundedPath {
 public:
-    BoundedPath(const TriangleMesh& mesh, const std::vector<std::vector<Neighbour>>& graph,
-                const Landmarks& landmarks)
+    BoundedPath(const TriangleMesh& mesh, const ChordGraph& graph, const Landmarks& landmarks)
         : mesh_(mesh),
           graph_(graph),
           landmarks_(landmarks),
@@ -211,7 +155,7 @@ public:
             if (found) {
                 break;
             }
-            for (const Neighbour& n : graph_[static_cast<std::size_t>(v)]) {
+            for (const Chord& n : graph_[static_cast<std::size_t>(v)]) {
                 const double through = d + n.length;
                 if (through < distance_[static_cast<std::size_t>(n.vertex)]) {
                     const double ahead = through + estimate(n.vertex);
@@ -232,7 +176,7 @@ public:
 private:
     static constexpr double kFar = std::numeric_limits<double>::infinity();
     const TriangleMesh& mesh_;
-    const std::vector<std::vector<Neighbour>>& graph_;
+    const ChordGraph& graph_;
     const Landmarks& landmarks_;
     std::vector<double> distance_;
     std::vector<Eigen::Index> touched_;
@@ -283,7 +227,7 @@ CorrespondenceError correspondence_error(const Eigen::MatrixX3d& deformed,
     error.median = median_of(error.distance);
     error.max = error.distance.maxCoeff();
 
-    const std::vector<std::vector<Neighbour>> graph = chord_graph(truth);
+    const ChordGraph graph = detail::chord_graph(truth, 2);
     const Landmarks landmarks(truth, graph, kLandmarks);
     // One byte per vertex: the threads write their own vertices, which std::vector<bool>'s
     // shared words would not allow.

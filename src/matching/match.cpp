@@ -20,6 +20,7 @@
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/mesh_size.h"
+#include "matching/intrinsic_start.h"
 #include "matching/spectral_descriptors.h"
 #include "matching/turned_parts.h"
 #include "operators/triangle.h"
@@ -84,15 +85,16 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         options.contenders < 1 || !detail::finite_at_least(options.contender_tolerance, 0) ||
         options.guidance_candidates < 1 || options.guidance_candidates > 8 ||
         options.refinement_guidances < 0 || options.refinement_guidances > 8 ||
-        options.refinement_iterations < 0) {
+        options.refinement_iterations < 0 || std::isnan(options.second_opinion_above) ||
+        options.second_opinion_above < 0) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
             "coarse_vertices >= 100, coarse_epsilon >= 1, selection_tolerance >= 0, "
             "signature_guidance >= 0, eigenfunction_guidance >= 0, stretch_weight >= 0, "
             "stiffness_candidates >= 1, contenders >= 1, contender_tolerance >= 0, "
-            "guidance_candidates in [1, 8], refinement_guidances in [0, 8] and "
-            "refinement_iterations >= 0");
+            "guidance_candidates in [1, 8], refinement_guidances in [0, 8], "
+            "refinement_iterations >= 0 and second_opinion_above >= 0");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -457,7 +459,9 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             double eigenfunction_guidance = 0;
             double disagreement = 0;
         };
-        const auto guided_match = [&](std::size_t s, bool reports) {
+        // `intrinsic_placement`: that of the intrinsic start s, if it is one (second_opinion).
+        const auto guided_match = [&](std::size_t s, bool reports,
+                                      const Eigen::MatrixX3d* intrinsic_placement = nullptr) {
             const TriangleMesh start_mesh = placed(starts[s]);
             // The guided flow, then the plain one; the result counts the steps of both.
             const auto guided_then_plain = [&](const PointDescriptors& descriptors,
@@ -524,8 +528,11 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                     // The map is estimated from this match and from the start's selection
                     // flow; SpectralDescriptors keeps the best of the maps ZoomOut finds.
                     std::vector<Eigen::MatrixX3d> placements{first.mesh.V};
-                    if (several_starts) {
+                    if (s < selection_flows.size()) {
                         placements.push_back(selection_flows[s].mesh.V);
+                    }
+                    if (intrinsic_placement != nullptr) {
+                        placements.push_back(*intrinsic_placement);
                     }
                     const PointDescriptors descriptors = spectral->eigenfunction_descriptors(
                         placements, coarsest.template_mesh.V, coarsest.target.V,
@@ -564,6 +571,27 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             }
         }
         chosen = contenders[kept];
+        // A doubtful result gets a second opinion from the intrinsic start, through the same
+        // guided rounds; the one that disagrees less is kept (MatchOptions::second_opinion_above).
+        if (!cancelled && outcomes[kept].disagreement > options.second_opinion_above) {
+            std::optional<detail::IntrinsicStart> intrinsic;
+            try {
+                intrinsic = detail::intrinsic_start(coarsest.template_mesh, coarsest.target);
+            } catch (const SolverError&) {
+                // No eigenbasis, no intrinsic start: the first opinion stands.
+            }
+            if (intrinsic) {
+                starts.push_back(intrinsic->similarity);
+                GuidedMatch second = guided_match(starts.size() - 1, true, &intrinsic->placement);
+                steps += second.flow.steps;
+                result.second_opinion_disagreement = second.disagreement;
+                if (!cancelled && second.disagreement < outcomes[kept].disagreement) {
+                    outcomes[kept] = std::move(second);
+                    chosen = starts.size() - 1;
+                    result.second_opinion = true;
+                }
+            }
+        }
         best = std::move(outcomes[kept].flow);
         best.steps = steps;
         result.stretch_weight = outcomes[kept].stretch_weight;

@@ -49,6 +49,7 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(json["turned_parts"], 0);  // the rigid prior has no refinement to turn back
     EXPECT_GT(json["intrinsic_disagreement"].get<double>(), 0);
     EXPECT_EQ(json["doubtful"], false);
+    EXPECT_EQ(json["second_opinion"], false);
     EXPECT_LT(json["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.02);
     EXPECT_EQ(json["stranded_vertices"], 0);
     EXPECT_TRUE(json["stranded_vertex_indices"].empty());
@@ -80,6 +81,10 @@ TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
     EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
     const auto refused = run_genflow(command + " --rigidity-length -1");
     EXPECT_NE(refused.exit_code, 0);
+    const auto no_threshold = run_genflow(command + " --second-opinion-above -0.1");
+    EXPECT_NE(no_threshold.exit_code, 0);
+    EXPECT_NE(no_threshold.err.find("--second-opinion-above"), std::string::npos)
+        << no_threshold.err;
     const auto quiet = run_genflow(command + " --quiet");
     ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
     EXPECT_NE(quiet.out.find("isometric prior"), std::string::npos) << quiet.out;

@@ -3,10 +3,15 @@
 
 #include <unistd.h>
 
+#include <Eigen/Geometry>
+#include <array>
 #include <cfenv>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <numbers>
 #include <random>
+#include <vector>
 
 #include "genflow/mesh/primitives.h"
 #include "genflow/operators/mesh_size.h"
@@ -21,6 +26,50 @@ TriangleMesh noisy_icosphere(int level, double relative_sigma, unsigned seed) {
 TriangleMesh noisy_torus(int rings, int sides, double relative_sigma, unsigned seed) {
     TriangleMesh mesh = make_torus(rings, sides);
     return add_noise(mesh, relative_sigma * mean_edge_length(mesh), seed);
+}
+
+namespace {
+
+struct Spike {
+    Eigen::Vector3d direction;
+    double height;
+};
+
+std::array<Spike, 5> figure_spikes() {
+    return {{{Eigen::Vector3d(0, 0.3, 1).normalized(), 1.0},
+             {Eigen::Vector3d(1, -0.2, 0.3).normalized(), 1.4},
+             {Eigen::Vector3d(-1, -0.2, 0.3).normalized(), 1.4},
+             {Eigen::Vector3d(0.7, 0.3, -1).normalized(), 1.8},
+             {Eigen::Vector3d(-0.7, 0.3, -1).normalized(), 1.8}}};
+}
+
+}  // namespace
+
+TriangleMesh spiked_figure(int level, std::uint64_t sampling_seed) {
+    TriangleMesh mesh = make_ellipsoid(level, Eigen::Vector3d::Ones(), sampling_seed);
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        const Eigen::Vector3d u = mesh.V.row(i).normalized();
+        double radius = 1;
+        for (const Spike& spike : figure_spikes()) {
+            radius += spike.height * std::exp((u.dot(spike.direction) - 1) / 0.05);
+        }
+        mesh.V.row(i) = radius * u;
+    }
+    return mesh;
+}
+
+Eigen::MatrixX3d pose_spiked_figure(const Eigen::MatrixX3d& points) {
+    std::vector<Joint> joints;
+    double angle = 60;
+    for (const Spike& spike : figure_spikes()) {
+        joints.push_back({.centre = 1.6 * spike.direction,
+                          .direction = spike.direction,
+                          .axis = spike.direction.cross(Eigen::Vector3d(0.3, 1, 0.2)).normalized(),
+                          .angle = angle * std::numbers::pi / 180,
+                          .width = 0.3});
+        angle += 10;
+    }
+    return bend_at_joints(points, joints);
 }
 
 TriangleMesh jittered_grid(int cells, unsigned seed) {

@@ -2,6 +2,7 @@
 // Meshes and helpers shared by the tests. Everything is generated: no data files needed.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -17,6 +18,16 @@ TriangleMesh noisy_icosphere(int level, double relative_sigma = 0.1, unsigned se
 
 /// Torus with vertex noise, as above.
 TriangleMesh noisy_torus(int rings, int sides, double relative_sigma = 0.1, unsigned seed = 2);
+
+/// A figure: a unit sphere with a head, two arms and two legs, spikes of different lengths but
+/// for the pairs, mirror images of one another across the plane x = 0, so that a reflection is
+/// its only symmetry (a map that follows it turns the surface over). Sampled as
+/// make_ellipsoid(level, 1, sampling_seed): two seeds sample the same surface differently.
+TriangleMesh spiked_figure(int level, std::uint64_t sampling_seed);
+
+/// Points of spiked_figure() posed: every spike bent by 60–100° (each its own angle, about its
+/// own axis) at 1.6 from the centre, beyond the reach of the other spikes' bends.
+Eigen::MatrixX3d pose_spiked_figure(const Eigen::MatrixX3d& points);
 
 /// A planar grid whose interior vertices are jittered inside the plane z = 0.
 TriangleMesh jittered_grid(int cells, unsigned seed = 3);

@@ -47,6 +47,14 @@ struct MatchProgress {
     const TriangleMesh* mesh = nullptr;  ///< the deformed template (valid during the call)
 };
 
+/// Above this intrinsic disagreement (MatchResult::intrinsic_disagreement) a match is doubtful.
+/// Measured with h1 on the 12 pairs of $GENFLOW_DATA/pairs.json and the 17 of
+/// docs/eval/other_poses.json: 0.045–0.24 on every match below 3.7 % mean error; 0.39 and 0.57
+/// on the one that failed (TOSCA michael kneeling, 15 % off, an arm on a leg; two
+/// simplifications of its target one vertex apart). With the articulated prior, 0.09–0.31 on
+/// its 11 results, up to 4 % off.
+inline constexpr double kDoubtfulDisagreement = 0.35;
+
 /// Parameters of match(). Every length is relative to the meshes, so the defaults need no
 /// tuning per pair (issue 5: scale-free parameters).
 struct MatchOptions {
@@ -235,6 +243,19 @@ struct MatchOptions {
     /// forearms untwist); no other pair of $GENFLOW_DATA changes (docs/eval/results.md).
     /// Same matches as the refinement; MatchResult::turned_parts says how many were turned.
     bool turn_back_parts = true;
+    /// When the guided coarsest result (h1, articulated) is doubtful, its intrinsic disagreement
+    /// above this, a second opinion: the guided rounds again, from a start
+    /// found without the flow (the shapes' extremities matched by their geodesic distances, a
+    /// functional map fitted to them, the template's least-squares similarity onto where that
+    /// map puts it; src/matching/intrinsic_start.h), whose placement also serves to estimate
+    /// the eigenfunctions' map. The result that disagrees less is kept
+    /// (MatchResult::second_opinion). TOSCA michael kneeling (h1): 15.3 → 3.5 % mean error,
+    /// 17333 → 2639 vertices stranded. Asked of all 29 h1 pairs of docs/eval/results.md (0),
+    /// it was kept on 10: better on 8 (the libigl arm's pose 1 0.92 → 0.35 %, the makehuman body
+    /// 0.66 → 0.54 %, small FAUST 0.86 → 0.74 %), the same on one, worse on FAUST (1.36 →
+    /// 1.40 %), at 1.45 times the time on average (up to 1.8); so only doubtful matches pay for
+    /// it by default. 0 asks for it on every match, +∞ on none.
+    double second_opinion_above = kDoubtfulDisagreement;
     RigidAlignmentOptions alignment;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
@@ -268,14 +289,6 @@ struct MatchLevel {
     double seconds = 0;  ///< pyramid, transfer and flow of this level
 };
 
-/// Above this intrinsic disagreement (MatchResult::intrinsic_disagreement) a match is doubtful.
-/// Measured with h1 on the 12 pairs of $GENFLOW_DATA/pairs.json and the 17 of
-/// docs/eval/other_poses.json: 0.045–0.24 on every match below 3.7 % mean error; 0.39 and 0.57
-/// on the one that failed (TOSCA michael kneeling, 15 % off, an arm on a leg; two
-/// simplifications of its target one vertex apart). With the articulated prior, 0.09–0.31 on
-/// its 11 results, up to 4 % off.
-inline constexpr double kDoubtfulDisagreement = 0.35;
-
 /// What match() did, for the report.
 struct MatchResult {
     TriangleMesh deformed;           ///< the template, deformed (its connectivity unchanged)
@@ -293,6 +306,10 @@ struct MatchResult {
     double refinement_guidance = 0;
     /// How many parts MatchOptions::turn_back_parts turned back.
     int turned_parts = 0;
+    /// The intrinsic disagreement of MatchOptions::second_opinion_above's second opinion, if
+    /// one was given, and whether its result was kept.
+    std::optional<double> second_opinion_disagreement;
+    bool second_opinion = false;
     /// How far the coarsest level's result disagrees with the target intrinsically (the
     /// median heat-kernel-signature discrepancy of where its vertices landed, over the
     /// consistency of the functional map that placement implies; the measure that chooses
