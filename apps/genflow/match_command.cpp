@@ -128,6 +128,11 @@ void run_match(const MatchCommandOptions& options) {
         summary["hausdorff"].get<double>(), 100 * summary["hausdorff_over_diagonal"].get<double>(),
         summary["mean_distance"].get<double>(),
         100 * summary["mean_distance_over_diagonal"].get<double>(), options.output.c_str());
+    if (summary["second_opinion"].get<bool>()) {
+        std::printf(
+            "the first result was doubtful; the second opinion, matched from an intrinsic start "
+            "(the shapes' extremities), agreed better and was kept\n");
+    }
     if (summary.contains("stranded_vertices")) {
         const auto& error = summary["correspondence_error_over_diagonal"];
         std::printf(

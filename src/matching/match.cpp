@@ -459,7 +459,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             double eigenfunction_guidance = 0;
             double disagreement = 0;
         };
-        // `intrinsic_placement`: that of the intrinsic start s, if it is one (second_opinion).
+        // `intrinsic_placement`: that of the intrinsic start s, if s is one (a second opinion).
         const auto guided_match = [&](std::size_t s, bool reports,
                                       const Eigen::MatrixX3d* intrinsic_placement = nullptr) {
             const TriangleMesh start_mesh = placed(starts[s]);
