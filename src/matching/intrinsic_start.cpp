@@ -329,24 +329,24 @@ std::vector<Eigen::Index> landmark_map(const Shape& from, const Shape& to, const
     const Eigen::MatrixXd from_turning = turning_functions(from, from_sources);
     const Eigen::MatrixXd to_turning = turning_functions(to, to_sources);
     const Eigen::Index columns = gaussians + from_turning.cols();
-    Eigen::MatrixXd from_gaussians(from.distance.rows(), columns);
-    Eigen::MatrixXd to_gaussians(to.distance.rows(), columns);
+    Eigen::MatrixXd from_descriptors(from.distance.rows(), columns);
+    Eigen::MatrixXd to_descriptors(to.distance.rows(), columns);
     Eigen::Index column = 0;
     for (const LandmarkPair& pair : set) {
         for (const double width : kWidths) {
-            from_gaussians.col(column) =
+            from_descriptors.col(column) =
                 (-(from.distance.col(from.extremities[pair.from]) / width).array().square()).exp();
-            to_gaussians.col(column) =
+            to_descriptors.col(column) =
                 (-(to.distance.col(to.extremities[pair.to]) / width).array().square()).exp();
             ++column;
         }
     }
-    from_gaussians.rightCols(from_turning.cols()) = kTurningWeight * from_turning;
-    to_gaussians.rightCols(to_turning.cols()) = kTurningWeight * to_turning;
+    from_descriptors.rightCols(from_turning.cols()) = kTurningWeight * from_turning;
+    to_descriptors.rightCols(to_turning.cols()) = kTurningWeight * to_turning;
     const Eigen::MatrixXd A = from.functions.leftCols(functions).transpose() *
-                              (from.masses.asDiagonal() * from_gaussians);
+                              (from.masses.asDiagonal() * from_descriptors);
     const Eigen::MatrixXd B =
-        to.functions.leftCols(functions).transpose() * (to.masses.asDiagonal() * to_gaussians);
+        to.functions.leftCols(functions).transpose() * (to.masses.asDiagonal() * to_descriptors);
     const Eigen::MatrixXd gram = B * B.transpose();
     Eigen::MatrixXd map(functions, functions);
     for (Eigen::Index r = 0; r < functions; ++r) {

@@ -3,9 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
-#include <cmath>
-
 #include "genflow/mesh/primitives.h"
 #include "genflow/operators/mesh_size.h"
 #include "support/test_meshes.h"
@@ -13,31 +10,8 @@
 namespace genflow {
 namespace {
 
-// The template at rest, and the target: the figure posed, sampled otherwise, turned, scaled
-// and moved; `truth` is where each template vertex belongs on it.
-struct PosedFigure {
-    Similarity motion{
-        .rotation =
-            Eigen::AngleAxisd(2.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix(),
-        .translation = Eigen::Vector3d(4, -1, 2),
-        .scale = 2.5};
-    TriangleMesh template_mesh = test::spiked_figure(3, 0);
-    TriangleMesh target;
-    Eigen::MatrixX3d truth;
-
-    PosedFigure() {
-        target = test::spiked_figure(4, 7);
-        target.V = motion.apply(test::pose_spiked_figure(target.V));
-        truth = motion.apply(test::pose_spiked_figure(template_mesh.V));
-    }
-
-    [[nodiscard]] double mean_distance(const Eigen::MatrixX3d& placement) const {
-        return (placement - truth).rowwise().norm().mean() / bounding_box_diagonal(target);
-    }
-};
-
 TEST(IntrinsicStart, PlacesAPosedFigureWhereItBelongs) {
-    const PosedFigure figure;
+    const test::PosedSpikedFigure figure;
     const std::optional<detail::IntrinsicStart> start =
         detail::intrinsic_start(figure.template_mesh, figure.target);
     ASSERT_TRUE(start.has_value());

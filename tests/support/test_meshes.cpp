@@ -43,6 +43,20 @@ std::array<Spike, 5> figure_spikes() {
              {Eigen::Vector3d(-0.7, 0.3, -1).normalized(), 1.8}}};
 }
 
+Eigen::MatrixX3d posed_figure(const Eigen::MatrixX3d& points) {
+    std::vector<Joint> joints;
+    double angle = 60;
+    for (const Spike& spike : figure_spikes()) {
+        joints.push_back({.centre = 1.6 * spike.direction,
+                          .direction = spike.direction,
+                          .axis = spike.direction.cross(Eigen::Vector3d(0.3, 1, 0.2)).normalized(),
+                          .angle = angle * std::numbers::pi / 180,
+                          .width = 0.3});
+        angle += 10;
+    }
+    return bend_at_joints(points, joints);
+}
+
 }  // namespace
 
 TriangleMesh spiked_figure(int level, std::uint64_t sampling_seed) {
@@ -58,18 +72,19 @@ TriangleMesh spiked_figure(int level, std::uint64_t sampling_seed) {
     return mesh;
 }
 
-Eigen::MatrixX3d pose_spiked_figure(const Eigen::MatrixX3d& points) {
-    std::vector<Joint> joints;
-    double angle = 60;
-    for (const Spike& spike : figure_spikes()) {
-        joints.push_back({.centre = 1.6 * spike.direction,
-                          .direction = spike.direction,
-                          .axis = spike.direction.cross(Eigen::Vector3d(0.3, 1, 0.2)).normalized(),
-                          .angle = angle * std::numbers::pi / 180,
-                          .width = 0.3});
-        angle += 10;
-    }
-    return bend_at_joints(points, joints);
+PosedSpikedFigure::PosedSpikedFigure()
+    : motion{.rotation =
+                 Eigen::AngleAxisd(2.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix(),
+             .translation = Eigen::Vector3d(4, -1, 2),
+             .scale = 2.5},
+      template_mesh(spiked_figure(3, 0)),
+      target(spiked_figure(4, 7)) {
+    target.V = motion.apply(posed_figure(target.V));
+    truth = motion.apply(posed_figure(template_mesh.V));
+}
+
+double PosedSpikedFigure::mean_distance(const Eigen::MatrixX3d& placement) const {
+    return (placement - truth).rowwise().norm().mean() / bounding_box_diagonal(target);
 }
 
 TriangleMesh jittered_grid(int cells, unsigned seed) {

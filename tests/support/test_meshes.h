@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh.h"
 
 namespace genflow::test {
@@ -25,9 +26,21 @@ TriangleMesh noisy_torus(int rings, int sides, double relative_sigma = 0.1, unsi
 /// make_ellipsoid(level, 1, sampling_seed): two seeds sample the same surface differently.
 TriangleMesh spiked_figure(int level, std::uint64_t sampling_seed);
 
-/// Points of spiked_figure() posed: every spike bent by 60–100° (each its own angle, about its
-/// own axis) at 1.6 from the centre, beyond the reach of the other spikes' bends.
-Eigen::MatrixX3d pose_spiked_figure(const Eigen::MatrixX3d& points);
+/// A pair of spiked figures: the template at rest (level 3), and the target, another sampling
+/// (level 4, 4× the vertices) with every spike bent by 60–100° (each its own angle, about its
+/// own axis, at 1.6 from the centre, beyond the reach of the other spikes' bends), turned,
+/// scaled by `motion` and moved; `truth` is where each template vertex belongs on it.
+struct PosedSpikedFigure {
+    Similarity motion;
+    TriangleMesh template_mesh;
+    TriangleMesh target;
+    Eigen::MatrixX3d truth;
+
+    PosedSpikedFigure();
+    /// Mean distance of `placement` (one row per template vertex) to `truth`, over the
+    /// target's bounding-box diagonal.
+    [[nodiscard]] double mean_distance(const Eigen::MatrixX3d& placement) const;
+};
 
 /// A planar grid whose interior vertices are jittered inside the plane z = 0.
 TriangleMesh jittered_grid(int cells, unsigned seed = 3);
