@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "cli_support.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -47,12 +49,25 @@ void create_frames_directory(const std::filesystem::path& directory) {
 }
 
 void add_second_opinion_option(CLI::App& command, double& threshold) {
+    // Non-negative or inf ("never"): CLI::NonNegativeNumber stops at the largest double.
+    const CLI::Validator non_negative_or_infinity(
+        [](const std::string& text) {
+            char* end = nullptr;
+            const double value = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || std::isnan(value) || value < 0) {
+                return "Value " + text + " is not a number >= 0 (or inf)";
+            }
+            return std::string();
+        },
+        "NONNEGATIVE or inf");
     command
         .add_option("--second-opinion-above", threshold,
-                    "Match the coarsest level again from an intrinsic start (extremities "
-                    "matched by geodesic distances) when the result's intrinsic disagreement "
-                    "is above this, and keep the result that disagrees less (0 = always)")
-        ->check(CLI::NonNegativeNumber)
+                    "Match the coarsest level also from an intrinsic start (extremities "
+                    "matched by geodesic distances) and keep the result that disagrees less "
+                    "with the target: 0 = always, side by side with the rigid starts; above 0, "
+                    "only when the result's intrinsic disagreement is above this, after them "
+                    "(0.35: the doubtful ones); inf = never")
+        ->check(non_negative_or_infinity)
         ->capture_default_str();
 }
 

@@ -34,7 +34,7 @@ struct EvalOptions {
     std::vector<std::string> priors{"h1", "rigid", "articulated"};
     std::vector<std::string> only;  // pair names; empty: all
     std::string data_dir;           // paths in the pairs are relative to it (default: the file's)
-    double second_opinion_above = kDoubtfulDisagreement;
+    double second_opinion_above = MatchOptions{}.second_opinion_above;
     bool json = false;
 };
 

@@ -556,12 +556,34 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             outcome.flow.energy.back() = plain_distance.value(outcome.flow.mesh);
             return outcome;
         };
+        // The intrinsic start, for the second opinion; none without an eigenbasis (the first
+        // opinion then stands).
+        const auto find_intrinsic_start = [&]() -> std::optional<detail::IntrinsicStart> {
+            try {
+                return detail::intrinsic_start(coarsest.template_mesh, coarsest.target);
+            } catch (const SolverError&) {
+                return std::nullopt;
+            }
+        };
+        // Asked of every match, the second opinion contends from the start, side by side with
+        // the rigid contenders: it costs what one more contender does.
+        std::optional<detail::IntrinsicStart> intrinsic;
+        const std::size_t rigid_contenders = contenders.size();
+        if (options.second_opinion_above == 0) {
+            intrinsic = find_intrinsic_start();
+            if (intrinsic) {
+                starts.push_back(intrinsic->similarity);
+                contenders.push_back(starts.size() - 1);
+            }
+        }
         // Starts that agreed about as well after the selection flows go through the guided
         // rounds each, side by side (their stiffness candidates then one after the other); the
         // one that ends agreeing best is kept (MatchOptions::contenders).
         std::vector<GuidedMatch> outcomes(contenders.size());
-        run_side_by_side(contenders.size(),
-                         [&](std::size_t k) { outcomes[k] = guided_match(contenders[k], k == 0); });
+        run_side_by_side(contenders.size(), [&](std::size_t k) {
+            outcomes[k] = guided_match(contenders[k], k == 0,
+                                       k < rigid_contenders ? nullptr : &intrinsic->placement);
+        });
         std::size_t kept = 0;
         int steps = 0;
         for (std::size_t k = 0; k < outcomes.size(); ++k) {
@@ -570,16 +592,16 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 kept = k;
             }
         }
+        if (contenders.size() > rigid_contenders) {
+            result.second_opinion_disagreement = outcomes.back().disagreement;
+            result.second_opinion = kept == outcomes.size() - 1;
+        }
         chosen = contenders[kept];
         // A doubtful result gets a second opinion from the intrinsic start, through the same
         // guided rounds; the one that disagrees less is kept (MatchOptions::second_opinion_above).
-        if (!cancelled && outcomes[kept].disagreement > options.second_opinion_above) {
-            std::optional<detail::IntrinsicStart> intrinsic;
-            try {
-                intrinsic = detail::intrinsic_start(coarsest.template_mesh, coarsest.target);
-            } catch (const SolverError&) {
-                // No eigenbasis, no intrinsic start: the first opinion stands.
-            }
+        if (!cancelled && options.second_opinion_above > 0 &&
+            outcomes[kept].disagreement > options.second_opinion_above) {
+            intrinsic = find_intrinsic_start();
             if (intrinsic) {
                 starts.push_back(intrinsic->similarity);
                 GuidedMatch second = guided_match(starts.size() - 1, true, &intrinsic->placement);

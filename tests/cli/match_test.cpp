@@ -81,11 +81,15 @@ TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
     EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
     const auto refused = run_genflow(command + " --rigidity-length -1");
     EXPECT_NE(refused.exit_code, 0);
-    const auto no_threshold = run_genflow(command + " --second-opinion-above -0.1");
-    EXPECT_NE(no_threshold.exit_code, 0);
-    EXPECT_NE(no_threshold.err.find("--second-opinion-above"), std::string::npos)
-        << no_threshold.err;
-    const auto quiet = run_genflow(command + " --quiet");
+    for (const char* threshold : {"-0.1", "nan"}) {
+        const auto no_threshold =
+            run_genflow(command + " --second-opinion-above " + std::string(threshold));
+        EXPECT_NE(no_threshold.exit_code, 0) << threshold;
+        EXPECT_NE(no_threshold.err.find("--second-opinion-above"), std::string::npos)
+            << no_threshold.err;
+    }
+    // inf, never, is a threshold too.
+    const auto quiet = run_genflow(command + " --quiet --second-opinion-above inf");
     ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
     EXPECT_NE(quiet.out.find("isometric prior"), std::string::npos) << quiet.out;
     EXPECT_EQ(quiet.err, "");

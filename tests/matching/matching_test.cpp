@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <atomic>
 #include <chrono>
+#include <limits>
 #include <numbers>
 #include <thread>
 
@@ -74,13 +75,15 @@ Eigen::MatrixX3d mirrored_beyond(const BentLimbPair& pair, double above,
 }
 
 // Options for matching the bent limb as given (no global alignment) with one candidate of the
-// last guided round: fewer flows to wait for where a test is about something else (the
-// candidates have Match.StiffnessAndGuidanceCandidatesKeepOneAndReportIt).
+// last guided round and no second opinion: fewer flows to wait for where a test is about
+// something else (the candidates have Match.StiffnessAndGuidanceCandidatesKeepOneAndReportIt,
+// the second opinion Match.SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss).
 MatchOptions one_candidate_options() {
     MatchOptions options;
     options.align = false;
     options.stiffness_candidates = 1;
     options.guidance_candidates = 1;
+    options.second_opinion_above = std::numeric_limits<double>::infinity();
     return options;
 }
 
@@ -601,6 +604,9 @@ TEST(Match, GuidanceReportsThePlainDistanceAndMatchesTheLimb) {
     // right match, too little to doubt it. Unguided from one start, it measures nothing.
     EXPECT_FALSE(plain.intrinsic_disagreement.has_value());
     EXPECT_FALSE(plain.doubtful());
+    // A second opinion never asked for (one_candidate_options()) is never given.
+    EXPECT_FALSE(both.second_opinion_disagreement.has_value());
+    EXPECT_FALSE(both.second_opinion);
     for (const MatchResult* guided : {&signatures, &both}) {
         ASSERT_TRUE(guided->intrinsic_disagreement.has_value());
         EXPECT_GT(*guided->intrinsic_disagreement, 0);
@@ -784,12 +790,27 @@ TEST(Correspondence, ClosestPointsLieOnTheTarget) {
 }
 
 // The posed spiked figure (every spike bent 60–100°, sampled otherwise, turned, scaled and
-// moved): the flows from the rigid starts settle spikes on the wrong ones
-// (32.5 % mean error, intrinsic disagreement 0.50: doubtful); the second opinion, from the
-// intrinsic start, matches it (2.8 %, 0.31).
-TEST(Match, DoubtfulMatchTakesTheSecondOpinionFromTheIntrinsicStart) {
+// moved): the flows from the rigid starts settle spikes on the wrong ones (32.5 % mean error,
+// intrinsic disagreement 0.50: doubtful); the second opinion, from the intrinsic start,
+// matches it (2.8 %, 0.31). By default it contends side by side with the rigid starts.
+TEST(Match, SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss) {
     const test::PosedSpikedFigure figure;
     const MatchResult result = match(figure.template_mesh, figure.target);
+    ASSERT_TRUE(result.second_opinion_disagreement.has_value());
+    EXPECT_TRUE(result.second_opinion);
+    EXPECT_DOUBLE_EQ(*result.intrinsic_disagreement, *result.second_opinion_disagreement);
+    EXPECT_FALSE(result.doubtful());
+    EXPECT_LT(figure.mean_distance(result.deformed.V), 0.05);
+}
+
+// Asked only of doubtful results, the second opinion comes after the rigid starts' guided
+// rounds (that it was given at all says their result was doubtful), and takes over the same
+// match.
+TEST(Match, DoubtfulMatchTakesTheSecondOpinionAfterTheRigidStarts) {
+    const test::PosedSpikedFigure figure;
+    MatchOptions options;
+    options.second_opinion_above = kDoubtfulDisagreement;
+    const MatchResult result = match(figure.template_mesh, figure.target, options);
     ASSERT_TRUE(result.second_opinion_disagreement.has_value());
     EXPECT_TRUE(result.second_opinion);
     EXPECT_DOUBLE_EQ(*result.intrinsic_disagreement, *result.second_opinion_disagreement);

@@ -243,19 +243,22 @@ struct MatchOptions {
     /// forearms untwist); no other pair of $GENFLOW_DATA changes (docs/eval/results.md).
     /// Same matches as the refinement; MatchResult::turned_parts says how many were turned.
     bool turn_back_parts = true;
-    /// When the guided coarsest result (h1, articulated) is doubtful, its intrinsic disagreement
-    /// above this, a second opinion: the guided rounds again, from a start
-    /// found without the flow (the shapes' extremities matched by their geodesic distances, a
-    /// functional map fitted to them, the template's least-squares similarity onto where that
-    /// map puts it; src/matching/intrinsic_start.h), whose placement also serves to estimate
-    /// the eigenfunctions' map. The result that disagrees less is kept
-    /// (MatchResult::second_opinion). TOSCA michael kneeling (h1): 15.3 → 3.5 % mean error,
-    /// 17333 → 2639 vertices stranded. Asked of all 29 h1 pairs of docs/eval/results.md (0),
-    /// it was kept on 10: better on 8 (the libigl arm's pose 1 0.92 → 0.35 %, the makehuman body
-    /// 0.66 → 0.54 %, small FAUST 0.86 → 0.74 %), the same on one, worse on FAUST (1.36 →
-    /// 1.40 %), at 1.45 times the time on average (up to 1.8); so only doubtful matches pay for
-    /// it by default. 0 asks for it on every match, +∞ on none.
-    double second_opinion_above = kDoubtfulDisagreement;
+    /// A second opinion for guided matches (h1, articulated): the guided rounds of the coarsest
+    /// level again, from a start found without the flow (the shapes' extremities matched by
+    /// their geodesic distances, a functional map fitted to them, the template's least-squares
+    /// similarity onto where that map puts it; src/matching/intrinsic_start.h), whose placement
+    /// also serves to estimate the eigenfunctions' map. The result that disagrees less with the
+    /// target is kept (MatchResult::second_opinion). At 0, the default, it is asked of every
+    /// match and contends side by side with the rigid starts' guided rounds; above 0, only of
+    /// results whose disagreement is above this, after them; +∞ never. TOSCA michael kneeling
+    /// (h1): 15.3 → 3.5 % mean error, 17333 → 2639 vertices stranded. Asked of every match, on
+    /// the 29 h1 pairs of docs/eval/results.md it was kept on 10: better on 8 (the libigl arm's
+    /// pose 1 0.92 → 0.35 %, the makehuman body 0.66 → 0.54 %, small FAUST 0.86 → 0.74 %), the
+    /// same on one, worse on FAUST (1.36 → 1.40 %); on the 11 articulated ones kept on 3 (FAUST
+    /// 000→003 3.87 → 3.25 %, the arm's pose 1 0.63 → 0.56 %, FAUST 000→002 the same). Side by
+    /// side it cost 1.23 times the time on the 12 h1 pairs of pairs.json (one after the other,
+    /// as at kDoubtfulDisagreement, 1.45 times where it runs).
+    double second_opinion_above = 0;
     RigidAlignmentOptions alignment;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
@@ -306,8 +309,8 @@ struct MatchResult {
     double refinement_guidance = 0;
     /// How many parts MatchOptions::turn_back_parts turned back.
     int turned_parts = 0;
-    /// The intrinsic disagreement of MatchOptions::second_opinion_above's second opinion, if
-    /// one was given, and whether its result was kept.
+    /// The intrinsic disagreement of the second opinion (MatchOptions::second_opinion_above),
+    /// if one was given, and whether its result was kept.
     std::optional<double> second_opinion_disagreement;
     bool second_opinion = false;
     /// How far the coarsest level's result disagrees with the target intrinsically (the
