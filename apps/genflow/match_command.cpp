@@ -130,8 +130,8 @@ void run_match(const MatchCommandOptions& options) {
         100 * summary["mean_distance_over_diagonal"].get<double>(), options.output.c_str());
     if (summary["second_opinion"].get<bool>()) {
         std::printf(
-            "the first result was doubtful; the second opinion, matched from an intrinsic start "
-            "(the shapes' extremities), agreed better and was kept\n");
+            "the second opinion, matched from an intrinsic start (the shapes' extremities), "
+            "agreed with the target better than the rigid starts' result and was kept\n");
     }
     if (summary.contains("stranded_vertices")) {
         const auto& error = summary["correspondence_error_over_diagonal"];

@@ -597,8 +597,9 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             result.second_opinion = kept == outcomes.size() - 1;
         }
         chosen = contenders[kept];
-        // A doubtful result gets a second opinion from the intrinsic start, through the same
-        // guided rounds; the one that disagrees less is kept (MatchOptions::second_opinion_above).
+        // Asked only of results that disagree more than a threshold above 0 (the doubtful ones
+        // at kDoubtfulDisagreement), the second opinion comes after the rigid starts' guided
+        // rounds; the result that disagrees less is kept (MatchOptions::second_opinion_above).
         if (!cancelled && options.second_opinion_above > 0 &&
             outcomes[kept].disagreement > options.second_opinion_above) {
             intrinsic = find_intrinsic_start();
