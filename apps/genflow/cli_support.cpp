@@ -71,4 +71,8 @@ void add_second_opinion_option(CLI::App& command, double& threshold) {
         ->capture_default_str();
 }
 
+nlohmann::json number_or_null(const std::optional<double>& value) {
+    return value ? nlohmann::json(*value) : nlohmann::json();
+}
+
 }  // namespace genflow::cli

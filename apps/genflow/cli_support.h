@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -44,5 +46,8 @@ void create_frames_directory(const std::filesystem::path& directory);
 
 /// `--second-opinion-above X` (MatchOptions::second_opinion_above), shared by match and eval.
 void add_second_opinion_option(CLI::App& command, double& threshold);
+
+/// A measure a match may not have taken (MatchResult's optionals): the number, else null.
+[[nodiscard]] nlohmann::json number_or_null(const std::optional<double>& value);
 
 }  // namespace genflow::cli

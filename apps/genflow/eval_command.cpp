@@ -145,10 +145,9 @@ void run_eval(const EvalOptions& options) {
                 {"stranded_vertices", error.stranded_count},
                 {"reversed_area", error.reversed_area},
                 {"hausdorff", hausdorff},
-                {"intrinsic_disagreement", result.intrinsic_disagreement
-                                               ? nlohmann::json(*result.intrinsic_disagreement)
-                                               : nlohmann::json()},
+                {"intrinsic_disagreement", number_or_null(result.intrinsic_disagreement)},
                 {"second_opinion", result.second_opinion},
+                {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
                 {"seconds", result.seconds}};
             rows.push_back(row);
             if (!options.json) {

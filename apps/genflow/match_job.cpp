@@ -66,11 +66,10 @@ nlohmann::json run_match_job(MatchJob job) {
         {"eigenfunction_guidance", result.eigenfunction_guidance},
         {"refinement_guidance", result.refinement_guidance},
         {"turned_parts", result.turned_parts},
-        {"intrinsic_disagreement", result.intrinsic_disagreement
-                                       ? nlohmann::json(*result.intrinsic_disagreement)
-                                       : nlohmann::json()},
+        {"intrinsic_disagreement", number_or_null(result.intrinsic_disagreement)},
         {"doubtful", result.doubtful()},
         {"second_opinion", result.second_opinion},
+        {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
         {"hausdorff", distances.hausdorff},
         {"mean_distance", distances.mean},
         {"target_bbox_diagonal", diagonal},

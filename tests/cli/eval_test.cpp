@@ -52,6 +52,8 @@ TEST(EvalCli, MatchesAPairAgainstItsRemeshedTarget) {
     EXPECT_EQ(rows[0]["prior"], "rigid");
     EXPECT_LT(rows[0]["mean"].template get<double>(), 0.02);
     EXPECT_EQ(rows[0]["stranded_vertices"], 0);
+    EXPECT_EQ(rows[0]["second_opinion"], false);
+    EXPECT_TRUE(rows[0]["second_opinion_disagreement"].is_null());  // the rigid prior asks none
 }
 
 TEST(EvalCli, MatchesAPairAgainstItsGroundTruthSimplified) {

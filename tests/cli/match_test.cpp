@@ -50,6 +50,7 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_GT(json["intrinsic_disagreement"].get<double>(), 0);
     EXPECT_EQ(json["doubtful"], false);
     EXPECT_EQ(json["second_opinion"], false);
+    EXPECT_TRUE(json["second_opinion_disagreement"].is_null());  // the rigid prior asks none
     EXPECT_LT(json["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.02);
     EXPECT_EQ(json["stranded_vertices"], 0);
     EXPECT_TRUE(json["stranded_vertex_indices"].empty());
