@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "genflow/matching/part_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -28,9 +29,10 @@ void check_part_model(const PartModel& model, Eigen::Index vertices) {
                                "' has a non-finite joint centre");
         }
     }
-    if (roots != 1) {
-        throw InvalidInput("part model: the tree needs exactly one root part, found " +
-                           std::to_string(roots));
+    if (roots == 0) {
+        throw InvalidInput(
+            "part model: no root part (one without a parent): the parents form a "
+            "cycle");
     }
     for (int p = 0; p < count; ++p) {  // every walk up must reach the root within `count` steps
         int at = p;
@@ -89,7 +91,10 @@ PartModel restrict_to(const PartModel& model, const std::vector<Eigen::Index>& v
 }
 
 std::vector<int> part_depths(const PartModel& model) {
-    std::vector<int> depth(model.parts.size(), 0);
+    const auto roots = std::count_if(model.parts.begin(), model.parts.end(),
+                                     [](const Part& part) { return part.parent == -1; });
+    // Several roots hang from the whole template (an implicit root), one level below it.
+    std::vector<int> depth(model.parts.size(), roots > 1 ? 1 : 0);
     for (std::size_t p = 0; p < model.parts.size(); ++p) {
         for (int at = model.parts[p].parent; at != -1;
              at = model.parts[static_cast<std::size_t>(at)].parent) {

@@ -49,6 +49,14 @@ TEST(ReadPartModel, ReadsTheThreeLayouts) {
     const PartModel bones = read_part_model({d / "bones.json", std::nullopt, d / "weights.txt"}, 3);
     EXPECT_EQ(bones.parts[1].parent, 0);
     EXPECT_DOUBLE_EQ(bones.weights(1, 1), 0.75);
+    // A skeleton whose root joint has several bones (the libigl elephant's): a forest.
+    write(d / "forest.json",
+          R"({"bones": [{"index": 0, "parent_bone": null, "joint_center": [0, 0, 0]},
+                        {"index": 1, "parent_bone": null, "joint_center": [0, 0, 0]}]})");
+    const PartModel forest =
+        read_part_model({d / "forest.json", std::nullopt, d / "weights.txt"}, 3);
+    EXPECT_EQ(forest.parts[0].parent, -1);
+    EXPECT_EQ(forest.parts[1].parent, -1);
 
     write(d / "smpl.json",
           R"({"parts": ["hips", "leg"], "parent": {"hips": null, "leg": "hips"},

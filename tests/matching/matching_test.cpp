@@ -255,9 +255,9 @@ TEST(PartModel, RejectsModelsThatDoNotFit) {
     PartModel cycle = model;
     cycle.parts[0].parent = 1;  // no root, a cycle
     EXPECT_THROW(check_part_model(cycle, mesh.V.rows()), InvalidInput);
-    PartModel two_roots = model;
+    PartModel two_roots = model;  // a forest fits (the libigl elephant's legs and spine)
     two_roots.parts[1].parent = -1;
-    EXPECT_THROW(check_part_model(two_roots, mesh.V.rows()), InvalidInput);
+    EXPECT_NO_THROW(check_part_model(two_roots, mesh.V.rows()));
     PartModel bad_sum = model;
     bad_sum.weights(3, 0) = 0.5;
     bad_sum.weights(3, 1) = 0.2;
@@ -265,9 +265,30 @@ TEST(PartModel, RejectsModelsThatDoNotFit) {
     EXPECT_THROW((void)weights_from_labels(Eigen::VectorXi::Constant(4, 2), 2), InvalidInput);
 }
 
-TEST(ArticulatedPrior, IsSPDAndBendsAtTheJoint) {
+// One root moves with the whole template; several hang from it, one level down, each about
+// its own joint.
+TEST(PartModel, DepthsOfATreeAndOfAForest) {
+    const TriangleMesh mesh = make_limb(2);
+    PartModel model = two_part_arm(mesh);
+    EXPECT_EQ(part_depths(model), (std::vector<int>{0, 1}));
+    model.parts.push_back({"hand", 1, Eigen::Vector3d(1.8, 0, 0)});
+    model.weights.conservativeResize(Eigen::NoChange, 3);
+    model.weights.col(2).setZero();
+    EXPECT_EQ(part_depths(model), (std::vector<int>{0, 1, 2}));
+    model.parts[1].parent = -1;
+    EXPECT_EQ(part_depths(model), (std::vector<int>{1, 1, 2}));
+}
+
+// As a tree (upper arm the root, the forearm its child) or as a forest (both roots, each about
+// its own joint), the two-part arm's metric is SPD and bends at the elbow.
+class ArticulatedPriorOfTreeAndForest : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ArticulatedPriorOfTreeAndForest, IsSPDAndBendsAtTheJoint) {
     const TriangleMesh arm = make_limb(3);
-    const PartModel parts = two_part_arm(arm);
+    PartModel parts = two_part_arm(arm);
+    if (GetParam()) {
+        parts.parts[1].parent = -1;
+    }
     SubspaceMetric metric = quasi_articulated_metric(arm, parts);
     metric.update(arm);
     const VertexField U = test::noisy_icosphere(3, 0.3, 4).V.topRows(arm.V.rows());
@@ -291,6 +312,11 @@ TEST(ArticulatedPrior, IsSPDAndBendsAtTheJoint) {
     EXPECT_LT(cost(bend), 0.1);
     EXPECT_GT(cost(bulge), 0.5);
 }
+
+INSTANTIATE_TEST_SUITE_P(ArticulatedPrior, ArticulatedPriorOfTreeAndForest, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& forest) {
+                             return forest.param ? "Forest" : "Tree";
+                         });
 
 // With smoothing_length the residual is measured in H1: the part of a rough differential that
 // no part motion explains moves smoothly, and the bend stays cheap.

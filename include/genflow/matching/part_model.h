@@ -7,9 +7,9 @@
 
 namespace genflow {
 
-/// A part of an articulated template: its name, its parent in the part tree (−1 for the root)
-/// and the rest position of the joint that links it to its parent (for the root: any point,
-/// unused).
+/// A part of an articulated template: its name, its parent in the part tree (−1 for a root)
+/// and the rest position of the joint that links it to its parent (for the only root: any
+/// point, unused; where several parts are roots, the joint each turns about).
 struct Part {
     std::string name;
     int parent = -1;
@@ -25,7 +25,7 @@ struct PartModel {
 };
 
 /// Throws InvalidInput with a one-line reason unless `model` fits a template of `vertices`
-/// vertices: at least one part, exactly one root, parents in range and no cycle, finite joint
+/// vertices: at least one part, at least one root, parents in range and no cycle, finite joint
 /// centres, one weight row per vertex, weights finite, in [0, 1] (to 1e-6) and summing to 1
 /// (to 1e-3).
 void check_part_model(const PartModel& model, Eigen::Index vertices);
@@ -39,7 +39,10 @@ void check_part_model(const PartModel& model, Eigen::Index vertices);
 [[nodiscard]] PartModel restrict_to(const PartModel& model,
                                     const std::vector<Eigen::Index>& vertices);
 
-/// Depth of each part in the tree (root 0). Assumes a model that passed check_part_model().
+/// Depth of each part in the tree: 0 for the root, whose motion is the whole template's. A
+/// forest (several roots, as a skeleton whose root joint has several bones: the libigl
+/// elephant's hips) hangs from the whole template, its roots at depth 1, each turning about its
+/// own joint centre. Assumes a model that passed check_part_model().
 [[nodiscard]] std::vector<int> part_depths(const PartModel& model);
 
 }  // namespace genflow
