@@ -34,7 +34,7 @@ void check_part_model(const PartModel& model, Eigen::Index vertices) {
             "part model: no root part (one without a parent): the parents form a "
             "cycle");
     }
-    for (int p = 0; p < count; ++p) {  // every walk up must reach the root within `count` steps
+    for (int p = 0; p < count; ++p) {  // every walk up must reach a root within `count` steps
         int at = p;
         for (int steps = 0; at != -1; ++steps) {
             if (steps > count) {
