@@ -556,40 +556,53 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             outcome.flow.energy.back() = plain_distance.value(outcome.flow.mesh);
             return outcome;
         };
-        // The intrinsic start, for the second opinion; none without an eigenbasis (the first
-        // opinion then stands).
-        const auto find_intrinsic_start = [&]() -> std::optional<detail::IntrinsicStart> {
-            try {
-                return detail::intrinsic_start(coarsest.template_mesh, coarsest.target);
-            } catch (const SolverError&) {
-                return std::nullopt;
-            }
-        };
-        // Asked of every match, the second opinion contends from the start, side by side with
-        // the rigid contenders: it costs what one more contender does.
+        // The second opinion joins the contenders from the intrinsic start; none without an
+        // eigenbasis or landmarks (the first opinion then stands). Returns whether it joined.
         std::optional<detail::IntrinsicStart> intrinsic;
         const std::size_t rigid_contenders = contenders.size();
-        if (options.second_opinion_above == 0) {
-            intrinsic = find_intrinsic_start();
+        const auto add_intrinsic_contender = [&] {
+            try {
+                intrinsic = detail::intrinsic_start(coarsest.template_mesh, coarsest.target);
+            } catch (const SolverError&) {
+                intrinsic.reset();
+            }
             if (intrinsic) {
                 starts.push_back(intrinsic->similarity);
                 contenders.push_back(starts.size() - 1);
             }
+            return intrinsic.has_value();
+        };
+        const auto placement_of = [&](std::size_t k) {
+            return k < rigid_contenders ? nullptr : &intrinsic->placement;
+        };
+        // Asked of every match, the second opinion contends from the start, side by side with
+        // the rigid contenders: it costs what one more contender does.
+        if (options.second_opinion_above == 0) {
+            add_intrinsic_contender();
         }
         // Starts that agreed about as well after the selection flows go through the guided
         // rounds each, side by side (their stiffness candidates then one after the other); the
         // one that ends agreeing best is kept (MatchOptions::contenders).
         std::vector<GuidedMatch> outcomes(contenders.size());
         run_side_by_side(contenders.size(), [&](std::size_t k) {
-            outcomes[k] = guided_match(contenders[k], k == 0,
-                                       k < rigid_contenders ? nullptr : &intrinsic->placement);
+            outcomes[k] = guided_match(contenders[k], k == 0, placement_of(k));
         });
         std::size_t kept = 0;
-        int steps = 0;
         for (std::size_t k = 0; k < outcomes.size(); ++k) {
-            steps += outcomes[k].flow.steps;
             if (!cancelled && outcomes[k].disagreement < outcomes[kept].disagreement) {
                 kept = k;
+            }
+        }
+        // Asked only of results that disagree more than a threshold above 0 (the doubtful ones
+        // at kDoubtfulDisagreement), the second opinion comes after the rigid starts' guided
+        // rounds, and is kept if it disagrees less (MatchOptions::second_opinion_above).
+        if (!cancelled && options.second_opinion_above > 0 &&
+            outcomes[kept].disagreement > options.second_opinion_above &&
+            add_intrinsic_contender()) {
+            outcomes.push_back(
+                guided_match(contenders.back(), true, placement_of(rigid_contenders)));
+            if (!cancelled && outcomes.back().disagreement < outcomes[kept].disagreement) {
+                kept = outcomes.size() - 1;
             }
         }
         if (contenders.size() > rigid_contenders) {
@@ -597,23 +610,9 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             result.second_opinion = kept == outcomes.size() - 1;
         }
         chosen = contenders[kept];
-        // Asked only of results that disagree more than a threshold above 0 (the doubtful ones
-        // at kDoubtfulDisagreement), the second opinion comes after the rigid starts' guided
-        // rounds; the result that disagrees less is kept (MatchOptions::second_opinion_above).
-        if (!cancelled && options.second_opinion_above > 0 &&
-            outcomes[kept].disagreement > options.second_opinion_above) {
-            intrinsic = find_intrinsic_start();
-            if (intrinsic) {
-                starts.push_back(intrinsic->similarity);
-                GuidedMatch second = guided_match(starts.size() - 1, true, &intrinsic->placement);
-                steps += second.flow.steps;
-                result.second_opinion_disagreement = second.disagreement;
-                if (!cancelled && second.disagreement < outcomes[kept].disagreement) {
-                    outcomes[kept] = std::move(second);
-                    chosen = starts.size() - 1;
-                    result.second_opinion = true;
-                }
-            }
+        int steps = 0;
+        for (const GuidedMatch& outcome : outcomes) {
+            steps += outcome.flow.steps;
         }
         best = std::move(outcomes[kept].flow);
         best.steps = steps;

@@ -815,18 +815,23 @@ TEST(Correspondence, ClosestPointsLieOnTheTarget) {
     }
 }
 
+// The second opinion was given and kept: the result is its, no longer doubtful, and on the
+// figure.
+void expect_second_opinion_kept(const test::PosedSpikedFigure& figure, const MatchResult& result) {
+    ASSERT_TRUE(result.second_opinion_disagreement.has_value());
+    EXPECT_TRUE(result.second_opinion);
+    EXPECT_DOUBLE_EQ(*result.intrinsic_disagreement, *result.second_opinion_disagreement);
+    EXPECT_FALSE(result.doubtful());
+    EXPECT_LT(figure.mean_distance(result.deformed.V), 0.05);
+}
+
 // The posed spiked figure (every spike bent 60–100°, sampled otherwise, turned, scaled and
 // moved): the flows from the rigid starts settle spikes on the wrong ones (32.5 % mean error,
 // intrinsic disagreement 0.50: doubtful); the second opinion, from the intrinsic start,
 // matches it (2.8 %, 0.31). By default it contends side by side with the rigid starts.
 TEST(Match, SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss) {
     const test::PosedSpikedFigure figure;
-    const MatchResult result = match(figure.template_mesh, figure.target);
-    ASSERT_TRUE(result.second_opinion_disagreement.has_value());
-    EXPECT_TRUE(result.second_opinion);
-    EXPECT_DOUBLE_EQ(*result.intrinsic_disagreement, *result.second_opinion_disagreement);
-    EXPECT_FALSE(result.doubtful());
-    EXPECT_LT(figure.mean_distance(result.deformed.V), 0.05);
+    expect_second_opinion_kept(figure, match(figure.template_mesh, figure.target));
 }
 
 // Asked only of doubtful results, the second opinion comes after the rigid starts' guided
@@ -836,12 +841,7 @@ TEST(Match, DoubtfulMatchTakesTheSecondOpinionAfterTheRigidStarts) {
     const test::PosedSpikedFigure figure;
     MatchOptions options;
     options.second_opinion_above = kDoubtfulDisagreement;
-    const MatchResult result = match(figure.template_mesh, figure.target, options);
-    ASSERT_TRUE(result.second_opinion_disagreement.has_value());
-    EXPECT_TRUE(result.second_opinion);
-    EXPECT_DOUBLE_EQ(*result.intrinsic_disagreement, *result.second_opinion_disagreement);
-    EXPECT_FALSE(result.doubtful());
-    EXPECT_LT(figure.mean_distance(result.deformed.V), 0.05);
+    expect_second_opinion_kept(figure, match(figure.template_mesh, figure.target, options));
 }
 
 TEST(Match, RejectsANegativeSecondOpinionThreshold) {
