@@ -40,7 +40,7 @@ std::string frame_name(int step) {
     return name.str();
 }
 
-void create_frames_directory(const std::filesystem::path& directory) {
+void create_output_directory(const std::filesystem::path& directory) {
     std::error_code error;
     std::filesystem::create_directories(directory, error);
     if (error) {

@@ -41,8 +41,9 @@ void print_warnings(const LoadedMesh& loaded);
 /// "frame_00042.ply": the name of animation frame `step` in a --frames directory.
 std::string frame_name(int step);
 
-/// Creates `directory` (and its parents) for --frames; throws IoError naming it on failure.
-void create_frames_directory(const std::filesystem::path& directory);
+/// Creates `directory` (and its parents) for --frames, --output-dir and the like; throws IoError
+/// naming it on failure.
+void create_output_directory(const std::filesystem::path& directory);
 
 /// `--second-opinion-above X` (MatchOptions::second_opinion_above), shared by match and eval.
 void add_second_opinion_option(CLI::App& command, double& threshold);

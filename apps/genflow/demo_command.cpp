@@ -68,7 +68,7 @@ void write_part_files(const std::filesystem::path& directory, const PartModel& p
 
 void run_demo(const DemoOptions& options) {
     const std::filesystem::path directory(options.output_dir);
-    create_frames_directory(directory);
+    create_output_directory(directory);
 
     // The template at rest; the target: the same shape sampled elsewhere, bent at both joints
     // and moved rigidly. The ground truth is the template under the same pose.

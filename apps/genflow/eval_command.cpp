@@ -19,6 +19,7 @@
 #include "genflow/exceptions.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/read_part_model.h"
+#include "genflow/io/write_mesh.h"
 #include "genflow/matching/correspondence_error.h"
 #include "genflow/matching/match.h"
 #include "genflow/matching/multiresolution.h"
@@ -35,6 +36,7 @@ struct EvalOptions {
     std::vector<std::string> only;  // pair names; empty: all
     std::string data_dir;           // paths in the pairs are relative to it (default: the file's)
     double second_opinion_above = MatchOptions{}.second_opinion_above;
+    std::string output_dir;  // where the targets matched and the results go; empty: nowhere
     bool json = false;
 };
 
@@ -91,6 +93,10 @@ void run_eval(const EvalOptions& options) {
     const std::filesystem::path base =
         options.data_dir.empty() ? file.parent_path() : std::filesystem::path(options.data_dir);
     nlohmann::json rows = nlohmann::json::array();
+    const std::filesystem::path output_dir(options.output_dir);
+    if (!output_dir.empty()) {
+        create_output_directory(output_dir);
+    }
     if (!options.json) {
         std::printf(
             "| pair | prior | mean error | median | max | stranded | reversed | Hausdorff | time "
@@ -123,6 +129,11 @@ void run_eval(const EvalOptions& options) {
             parts = read_part_model(files, template_mesh.V.rows());
         }
         const double diagonal = bounding_box_diagonal(truth);
+        // The target as matched (a simplified one exists nowhere else), to look at the results
+        // against.
+        if (!output_dir.empty()) {
+            write_mesh(output_dir / (name + ".target.ply"), target);
+        }
         for (const std::string& prior_name : options.priors) {
             const MatchPrior prior = *parse_match_prior(prior_name);
             if (prior == MatchPrior::Articulated && !parts) {
@@ -136,6 +147,9 @@ void run_eval(const EvalOptions& options) {
             const CorrespondenceError error = correspondence_error(result.deformed.V, truth);
             const double hausdorff =
                 surface_distances(result.deformed, target).hausdorff / diagonal;
+            if (!output_dir.empty()) {
+                write_mesh(output_dir / (name + "." + prior_name + ".ply"), result.deformed);
+            }
             const nlohmann::json row = {
                 {"pair", name},
                 {"prior", prior_name},
@@ -196,6 +210,10 @@ void register_eval_command(CLI::App& app) {
     command->add_option("--data-dir", options->data_dir,
                         "Directory the paths in the file are relative to (default: the file's)");
     add_second_opinion_option(*command, options->second_opinion_above);
+    command->add_option("--output-dir", options->output_dir,
+                        "Write there each pair's target as matched (NAME.target.ply) and each "
+                        "match's deformed template (NAME.PRIOR.ply, the template's vertices and "
+                        "faces)");
     command->add_flag("--json", options->json, "Print JSON instead of a table");
     command->callback([options] { run_eval(*options); });
 }

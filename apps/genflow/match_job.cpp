@@ -18,7 +18,7 @@ namespace genflow::cli {
 nlohmann::json run_match_job(MatchJob job) {
     int frame = 0;
     if (job.frames) {
-        create_frames_directory(*job.frames);
+        create_output_directory(*job.frames);
     }
     ProgressBar bar("match", job.progress_bar);
     job.options.progress = [&](const MatchProgress& p) {

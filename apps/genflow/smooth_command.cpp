@@ -56,7 +56,7 @@ void run_smooth(SmoothCommandOptions options) {
     }
     const std::filesystem::path frames(options.frames);
     if (!options.frames.empty()) {
-        create_frames_directory(frames);
+        create_output_directory(frames);
         write_mesh(frames / frame_name(0), loaded.mesh, {.ply_precision = PlyPrecision::Float});
     }
     if (options.lambda > 0) {

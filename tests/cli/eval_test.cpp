@@ -9,7 +9,9 @@
 #include <string>
 
 #include "cli/cli_runner.h"
+#include "genflow/io/read_mesh.h"
 #include "genflow/io/write_mesh.h"
+#include "genflow/matching/correspondence_error.h"
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh/primitives.h"
 
@@ -70,6 +72,38 @@ TEST(EvalCli, MatchesAPairAgainstItsGroundTruthSimplified) {
     cells >> mean >> percent;
     EXPECT_LT(mean, 2) << result.out;
     EXPECT_EQ(percent, "%");
+}
+
+TEST(EvalCli, WritesTheTargetAsMatchedAndTheResultToTheOutputDirectory) {
+    const test::TemporaryDirectory directory;
+    const auto file = write_pair(directory.path(), {{"target_simplified", 0.6}});
+    const auto out = directory.path() / "results" / "limb";
+    const auto result =
+        run_genflow("eval " + quoted(file) + " --priors rigid --output-dir " + quoted(out));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    // The simplified target has about 60 % of the truth's vertices (coarsen() may stop a few
+    // collapses short); the result has the template's vertices and faces, and lies where the
+    // truth does.
+    const TriangleMesh truth = read_mesh(directory.path() / "truth.ply");
+    const TriangleMesh target = read_mesh(out / "limb.target.ply");
+    EXPECT_NEAR(static_cast<double>(target.V.rows()), 0.6 * static_cast<double>(truth.V.rows()),
+                0.01 * static_cast<double>(truth.V.rows()));
+    const TriangleMesh deformed = read_mesh(out / "limb.rigid.ply");
+    ASSERT_EQ(deformed.V.rows(), truth.V.rows());
+    EXPECT_EQ(deformed.F, truth.F);
+    EXPECT_LT(correspondence_error(deformed.V, truth).mean, 0.02);
+}
+
+TEST(EvalCli, RefusesAnOutputDirectoryItCannotCreateBeforeMatching) {
+    const test::TemporaryDirectory directory;
+    const auto file = write_pair(directory.path(), {{"target_remeshed", "resampled.obj"}});
+    const auto blocked = directory.path() / "template.ply" / "results";  // under a file
+    const auto result =
+        run_genflow("eval " + quoted(file) + " --priors rigid --output-dir " + quoted(blocked));
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find(blocked.string() + ": cannot create directory"), std::string::npos)
+        << result.err;
+    EXPECT_EQ(result.out.find("| limb |"), std::string::npos) << result.out;
 }
 
 TEST(EvalCli, RefusesAPairWithoutATargetOrWithABadShare) {
