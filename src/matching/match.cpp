@@ -20,7 +20,9 @@
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/mesh_size.h"
+#include "matching/functional_map.h"
 #include "matching/intrinsic_start.h"
+#include "matching/map_fit.h"
 #include "matching/spectral_descriptors.h"
 #include "matching/turned_parts.h"
 #include "operators/triangle.h"
@@ -128,6 +130,10 @@ std::unique_ptr<Metric> make_metric(const MatchOptions& options, MatchPrior prio
 }  // namespace
 
 namespace {
+
+// MatchOptions::fit_to_map: the smoothing length of the fit over the target's bounding-box
+// diagonal.
+constexpr double kMapFitLength = 0.01;
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -649,6 +655,22 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                         moved_embedding(level.embedding, best_start));
     };
 
+    // The rows of level l's template that are the coarsest template's vertices (a subset of
+    // every level's), in the coarsest level's order: where `spectral` compares placements.
+    const auto coarsest_rows = [&](int l) {
+        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        std::vector<Eigen::Index> level_vertex(static_cast<std::size_t>(template_mesh.V.rows()));
+        for (std::size_t v = 0; v < level.original_vertex.size(); ++v) {
+            level_vertex[static_cast<std::size_t>(level.original_vertex[v])] =
+                static_cast<Eigen::Index>(v);
+        }
+        std::vector<Eigen::Index> rows;
+        for (const Eigen::Index original : coarsest.original_vertex) {
+            rows.push_back(level_vertex[static_cast<std::size_t>(original)]);
+        }
+        return rows;
+    };
+
     // The next finer level's flows (MatchOptions::refinement_guidances): the plain one, and
     // those first guided by the eigenfunctions carried over by the map the coarsest result
     // implies, side by side; the result whose coarsest vertices disagree least is kept.
@@ -674,19 +696,9 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                                   options.prior, {}, 0, false);
             flows[k].steps += guided_flow.steps;
         });
-        // The coarsest template's vertices are a subset of this level's.
-        std::vector<Eigen::Index> level_vertex(static_cast<std::size_t>(template_mesh.V.rows()));
-        for (std::size_t v = 0; v < level.original_vertex.size(); ++v) {
-            level_vertex[static_cast<std::size_t>(level.original_vertex[v])] =
-                static_cast<Eigen::Index>(v);
-        }
-        Eigen::MatrixX3d on_coarsest(coarsest.template_mesh.V.rows(), 3);
+        const std::vector<Eigen::Index> rows = coarsest_rows(l);
         const KeptFlow kept = keep_lowest(flows, cancelled, [&](const FlowResult& flow) {
-            for (Eigen::Index c = 0; c < on_coarsest.rows(); ++c) {
-                on_coarsest.row(c) = flow.mesh.V.row(level_vertex[static_cast<std::size_t>(
-                    coarsest.original_vertex[static_cast<std::size_t>(c)])]);
-            }
-            return disagreement(*spectral, on_coarsest);
+            return disagreement(*spectral, flow.mesh.V(rows, Eigen::all));
         });
         result.refinement_guidance =
             kept.index == 0 ? 0 : factor(kept.index) * options.eigenfunction_guidance;
@@ -700,12 +712,12 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
 
     // The parts of the refined level that a fine functional map places turned over
     // (MatchOptions::turn_back_parts): turned back and flowed again, if d_H stays about as low.
-    const auto turn_back = [&](int l, FlowResult& flow) {
+    // `rest`: the level's template at rest, placed by the chosen start.
+    const auto turn_back = [&](int l, const TriangleMesh& rest, FlowResult& flow,
+                               const detail::VertexMap& map) {
         const Level& level = pyramid[static_cast<std::size_t>(l)];
-        TriangleMesh rest = level.template_mesh;
-        rest.V = best_start.apply(rest.V);
         const std::vector<detail::TurnedPart> parts =
-            detail::find_turned_parts(rest, flow.mesh.V, level.target);
+            detail::find_turned_parts(rest, flow.mesh.V, level.target, map);
         if (parts.empty()) {
             return;
         }
@@ -721,6 +733,32 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         }
     };
 
+    // The refined level drawn towards where the fine map puts it, where the map does not tear
+    // off small pieces, and flowed again (MatchOptions::fit_to_map); kept if its heat kernel
+    // signatures then agree better with the target's.
+    const auto fit_to_map = [&](int l, FlowResult& flow, const detail::VertexMap& map) {
+        if (map.functions < 1) {
+            return;
+        }
+        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        TriangleMesh fitted = flow.mesh;
+        const Eigen::MatrixX3d placement = level.target.V(map.target_vertex, Eigen::all);
+        const Eigen::VectorXd trusted = detail::trusted_vertices(
+            flow.mesh, placement, mean_edge_length(level.target),
+            map.template_masses.sum() / static_cast<double>(map.functions));
+        fitted.V = detail::fitted_to_map(flow.mesh, placement, kMapFitLength * diagonal, trusted);
+        FlowResult again = flow_level(l, fitted, options.refinement_iterations, best_start,
+                                      options.prior, {}, options.stretch_weight, false);
+        const std::vector<Eigen::Index> rows = coarsest_rows(l);
+        if (!cancelled && spectral->discrepancy(again.mesh.V(rows, Eigen::all)) <
+                              spectral->discrepancy(flow.mesh.V(rows, Eigen::all))) {
+            again.steps += flow.steps;
+            again.energy.front() = flow.energy.front();
+            flow = std::move(again);
+            result.fitted_to_map = true;
+        }
+    };
+
     // Finer levels: transfer, then a short flow.
     const bool refines =
         guided && options.eigenfunction_guidance > 0 && options.refinement_guidances > 0;
@@ -733,8 +771,17 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         FlowResult flow = refined_level ? refine(l, moved)
                                         : flow_level(l, moved, options.fine_iterations, best_start,
                                                      options.prior);
-        if (refined_level && options.turn_back_parts && !cancelled) {
-            turn_back(l, flow);
+        // One fine map serves both.
+        if (refined_level && (options.turn_back_parts || options.fit_to_map) && !cancelled) {
+            TriangleMesh rest = level.template_mesh;
+            rest.V = best_start.apply(rest.V);
+            const detail::VertexMap map = detail::zoomed_out_map(rest, flow.mesh.V, level.target);
+            if (options.turn_back_parts) {
+                turn_back(l, rest, flow, map);
+            }
+            if (options.fit_to_map && !cancelled) {
+                fit_to_map(l, flow, map);
+            }
         }
         result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));
         current = std::move(flow.mesh);

@@ -8,29 +8,14 @@
 
 #include "genflow/exceptions.h"
 #include "genflow/mesh/edges.h"
-#include "genflow/operators/laplacian_eigenbasis.h"
 #include "genflow/operators/mesh_size.h"
 #include "matching/functional_map.h"
 #include "mesh/union_find.h"
 #include "numerics/nearest_orthogonal.h"
-#include "spatial/point_index.h"
 
 namespace genflow::detail {
 
 namespace {
-
-// The `count` lowest non-constant eigenfunctions of a mesh, its masses and their eigenvalues.
-struct Spectrum {
-    Eigen::MatrixXd functions;
-    Eigen::VectorXd masses;
-    Eigen::VectorXd values;
-};
-
-Spectrum lowest_spectrum(const TriangleMesh& mesh, int count) {
-    const LaplacianEigenbasis basis = laplacian_eigenbasis(mesh, count + 1);
-    const Eigen::Index kept = basis.values.size() - 1;
-    return {basis.functions.rightCols(kept), basis.masses, basis.values.tail(kept)};
-}
 
 // The orthogonal map R (a rotation, or with `reflection` possibly a reflection) that best takes
 // the rows of `from` onto those of `to`, both centred (row vectors: from R ≈ to), and the root
@@ -54,35 +39,18 @@ OrthogonalFit orthogonal_fit(const Eigen::MatrixX3d& from, const Eigen::MatrixX3
 
 std::vector<TurnedPart> find_turned_parts(const TriangleMesh& template_rest,
                                           const Eigen::MatrixX3d& deformed,
-                                          const TriangleMesh& target,
+                                          const TriangleMesh& target, const VertexMap& map,
                                           const TurnedPartOptions& options) {
-    if (deformed.rows() != template_rest.V.rows()) {
-        throw InvalidInput("find_turned_parts: the deformed template has " +
-                           std::to_string(deformed.rows()) + " vertices, not " +
-                           std::to_string(template_rest.V.rows()));
+    if (deformed.rows() != template_rest.V.rows() ||
+        (map.functions > 0 &&
+         static_cast<Eigen::Index>(map.target_vertex.size()) != deformed.rows())) {
+        throw InvalidInput("find_turned_parts: the deformed template or its map has not the " +
+                           std::to_string(template_rest.V.rows()) + " vertices of the template");
     }
-    const Spectrum from = lowest_spectrum(template_rest, options.functions);
-    const Spectrum to = lowest_spectrum(target, options.functions);
-    const Eigen::Index count = std::min(from.functions.cols(), to.functions.cols());
-    if (count < 1) {
+    if (map.functions < 1) {
         return {};
     }
-    // The match's correspondence (each template vertex with the target vertex nearest to where
-    // it was put), refined by ZoomOut in the embedding of ψ_k/√λ_k (as
-    // SpectralDescriptors::eigenfunction_descriptors()).
-    const PointIndex target_points(target.V);
-    std::vector<Eigen::Index> correspondence(static_cast<std::size_t>(deformed.rows()));
-    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
-        correspondence[static_cast<std::size_t>(i)] =
-            target_points.nearest(deformed.row(i).transpose()).first;
-    }
-    const Eigen::RowVectorXd weights = embedding_weights(to.values.head(count));
-    constexpr Eigen::Index kFirstSize = 10;
-    constexpr Eigen::Index kStep = 5;
-    const std::vector<Eigen::Index> mapped_vertex =
-        zoom_out(from.functions, from.masses, to.functions, weights, std::move(correspondence),
-                 kFirstSize, count, kStep);
-    const Eigen::MatrixX3d mapped = target.V(mapped_vertex, Eigen::all);
+    const Eigen::MatrixX3d mapped = target.V(map.target_vertex, Eigen::all);
 
     // The disputed vertices, in connected parts.
     const double reach = options.disputed_distance * bounding_box_diagonal(target);
@@ -106,11 +74,11 @@ std::vector<TurnedPart> find_turned_parts(const TriangleMesh& template_rest,
         }
     }
 
-    const double area = from.masses.sum();
-    const double min_area = area / static_cast<double>(count);
+    const Eigen::VectorXd& masses = map.template_masses;
+    const double min_area = masses.sum() / static_cast<double>(map.functions);
     std::vector<std::pair<double, TurnedPart>> found;
     for (std::vector<Eigen::Index>& vertices : members) {
-        if (vertices.size() < 4 || from.masses(vertices).sum() < min_area) {
+        if (vertices.size() < 4 || masses(vertices).sum() < min_area) {
             continue;
         }
         const Eigen::MatrixX3d rest = template_rest.V(vertices, Eigen::all);
@@ -140,7 +108,7 @@ std::vector<TurnedPart> find_turned_parts(const TriangleMesh& template_rest,
             }
             core = std::move(explained);
         }
-        const double core_area = from.masses(core).sum();
+        const double core_area = masses(core).sum();
         if (core.size() < 4 || core_area < min_area) {
             continue;
         }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "genflow/mesh.h"
+#include "matching/functional_map.h"
 
 namespace genflow::detail {
 
@@ -34,8 +35,6 @@ struct TurnedPart {
 };
 
 struct TurnedPartOptions {
-    /// Eigenfunctions of the map (ZoomOut from 10 by 5).
-    int functions = 60;
     /// A vertex is disputed when the map puts it this far from the match, over the target's
     /// bounding-box diagonal.
     double disputed_distance = 0.015;
@@ -51,12 +50,14 @@ struct TurnedPartOptions {
 };
 
 /// The parts of `deformed` (the template's vertices as a match placed them; `template_rest` the
-/// same template at rest, for its connectivity, areas and intrinsic geometry) that the
-/// functional map from the template to `target` places turned, largest first.
-/// \throws InvalidInput if `deformed` does not have the template's vertex count.
+/// same template at rest, for its connectivity) that `map`, the functional map from the
+/// template to `target` (zoomed_out_map() of 60 functions from this match), places turned,
+/// largest first.
+/// \throws InvalidInput if `deformed` or `map` does not have the template's vertex count.
 [[nodiscard]] std::vector<TurnedPart> find_turned_parts(const TriangleMesh& template_rest,
                                                         const Eigen::MatrixX3d& deformed,
                                                         const TriangleMesh& target,
+                                                        const VertexMap& map,
                                                         const TurnedPartOptions& options = {});
 
 /// `deformed` with each part turned back as the map places it, and the rest of its region by

@@ -46,7 +46,8 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
     EXPECT_LT(json["hausdorff_over_diagonal"].get<double>(), 0.05);
     EXPECT_EQ(json["levels"].size(), 1u);
-    EXPECT_EQ(json["turned_parts"], 0);  // the rigid prior has no refinement to turn back
+    EXPECT_EQ(json["turned_parts"], 0);       // the rigid prior has no refinement to turn back
+    EXPECT_EQ(json["fitted_to_map"], false);  // nor to fit to the fine map
     EXPECT_GT(json["intrinsic_disagreement"].get<double>(), 0);
     EXPECT_EQ(json["doubtful"], false);
     EXPECT_EQ(json["second_opinion"], false);
@@ -75,7 +76,8 @@ TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
                                 quoted(directory / "target.ply") + " -o " +
                                 quoted(directory / "out.ply") + " --prior isometric --no-align";
     const auto result = run_genflow(
-        command + " --rigidity-length 0.3 --fake-edges 20 --implicit --no-turn-back --json");
+        command +
+        " --rigidity-length 0.3 --fake-edges 20 --implicit --no-turn-back --no-map-fit --json");
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto json = nlohmann::json::parse(result.out);
     EXPECT_EQ(json["prior"], "isometric");

@@ -7,6 +7,7 @@
 
 #include "genflow/exceptions.h"
 #include "genflow/mesh/primitives.h"
+#include "genflow/operators/mesh_size.h"
 
 namespace genflow {
 namespace {
@@ -79,8 +80,16 @@ TEST(TurnedParts, TurnsThePartBackAndBlendsItsRegion) {
 // A perfect match of a mesh onto itself: the map (ZoomOut from the identity) disputes nothing.
 TEST(TurnedParts, FindsNothingInAPerfectMatch) {
     const TurnedEnd limb;
-    EXPECT_TRUE(detail::find_turned_parts(limb.rest, limb.rest.V, limb.rest).empty());
-    EXPECT_THROW((void)detail::find_turned_parts(limb.rest, limb.rest.V.topRows(10), limb.rest),
+    const detail::VertexMap map = detail::zoomed_out_map(limb.rest, limb.rest.V, limb.rest);
+    EXPECT_EQ(map.functions, 60);
+    const Eigen::MatrixX3d mapped = limb.rest.V(map.target_vertex, Eigen::all);
+    EXPECT_LT(mean_distance(limb, mapped, limb.rest.V, -10, 10),
+              0.005 * bounding_box_diagonal(limb.rest));
+    EXPECT_TRUE(detail::find_turned_parts(limb.rest, limb.rest.V, limb.rest, map).empty());
+    EXPECT_THROW(
+        (void)detail::find_turned_parts(limb.rest, limb.rest.V.topRows(10), limb.rest, map),
+        InvalidInput);
+    EXPECT_THROW((void)detail::zoomed_out_map(limb.rest, limb.rest.V.topRows(10), limb.rest),
                  InvalidInput);
 }
 

@@ -243,6 +243,16 @@ struct MatchOptions {
     /// forearms untwist); no other pair of $GENFLOW_DATA changes (docs/eval/results.md).
     /// Same matches as the refinement; MatchResult::turned_parts says how many were turned.
     bool turn_back_parts = true;
+    /// After that, draw the refined level towards where the same map puts each vertex by a
+    /// smooth step (H1 over 1 % of the diagonal; not where the map tears off pieces smaller than
+    /// it resolves), flow again (`refinement_iterations` steps, with the stretch weight), and
+    /// keep the result if the heat kernel signatures then agree better with the target's
+    /// (src/matching/map_fit.h). On the 43 h1 and articulated results of docs/eval/results.md
+    /// it was kept on 20: better on 18 (hand 1.94 → 1.29 %, articulated 3.09 → 1.58 %; FAUST
+    /// 000→003 articulated 3.25 → 1.31 %, the elephant's frame 300 2.87 → 1.40 %), 0.02–0.03
+    /// worse on two; the libigl arm (articulated, 4.04 → 3.11 %) ends with a larger Hausdorff
+    /// distance (1.5 → 4.1 %). MatchResult::fitted_to_map says whether it was kept.
+    bool fit_to_map = true;
     /// A second opinion for guided matches (h1, articulated): the guided rounds of the coarsest
     /// level again, from a start found without the flow (the shapes' extremities matched by
     /// their geodesic distances, a functional map fitted to them, the template's least-squares
@@ -309,6 +319,8 @@ struct MatchResult {
     double refinement_guidance = 0;
     /// How many parts MatchOptions::turn_back_parts turned back.
     int turned_parts = 0;
+    /// Whether the fit to the fine map was kept (MatchOptions::fit_to_map).
+    bool fitted_to_map = false;
     /// The intrinsic disagreement of the second opinion (MatchOptions::second_opinion_above),
     /// if one was given, and whether its result was kept.
     std::optional<double> second_opinion_disagreement;

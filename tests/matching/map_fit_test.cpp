@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+#include "matching/map_fit.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "genflow/exceptions.h"
+#include "genflow/mesh/edges.h"
+#include "genflow/mesh/primitives.h"
+#include "genflow/operators/mass_matrix.h"
+#include "genflow/operators/mesh_size.h"
+
+namespace genflow {
+namespace {
+
+// A map that moves the whole mesh by t: K annihilates constants, so the fit moves it by t
+// exactly, whatever the smoothing length.
+TEST(MapFit, CarriesATranslationExactly) {
+    const TriangleMesh sphere = make_icosphere(3);
+    const Eigen::RowVector3d shift(0.3, -0.2, 0.5);
+    const Eigen::MatrixX3d placement = sphere.V.rowwise() + shift;
+    for (const double length : {0.01, 0.2, 2.0}) {
+        const Eigen::MatrixX3d fitted = detail::fitted_to_map(sphere, placement, length);
+        EXPECT_LT((fitted - placement).cwiseAbs().maxCoeff(), 1e-9) << "length " << length;
+    }
+}
+
+// A noisy map (each vertex off by 0.05 of the unit sphere's radius, at random): the fit keeps
+// its smooth part and smooths the noise away, the more the longer the length; at a length far
+// below an edge it follows the map.
+TEST(MapFit, SmoothsTheMapsNoise) {
+    const TriangleMesh sphere = make_icosphere(3);
+    const Eigen::RowVector3d shift(0.3, -0.2, 0.5);
+    std::mt19937 random(7);
+    std::normal_distribution<double> noise(0, 0.05);
+    Eigen::MatrixX3d placement = sphere.V.rowwise() + shift;
+    for (Eigen::Index i = 0; i < placement.size(); ++i) {
+        placement(i) += noise(random);
+    }
+    const Eigen::MatrixX3d truth = sphere.V.rowwise() + shift;
+    const auto mean_error = [&](const Eigen::MatrixX3d& points) {
+        return (points - truth).rowwise().norm().mean();
+    };
+    const double map_error = mean_error(placement);
+    const double short_error = mean_error(detail::fitted_to_map(sphere, placement, 0.1));
+    const double long_error = mean_error(detail::fitted_to_map(sphere, placement, 0.3));
+    EXPECT_LT(short_error, 0.5 * map_error);
+    EXPECT_LT(long_error, short_error);
+    const Eigen::MatrixX3d followed = detail::fitted_to_map(sphere, placement, 1e-4);
+    EXPECT_LT((followed - placement).rowwise().norm().maxCoeff(), 1e-3);
+}
+
+// A map that puts one vertex and its ring far away (a few vertices on a far part of the
+// target) tears there: those vertices are not trusted, and with weight 0 they follow their
+// neighbours, so the fit still carries the map's translation exactly. A tear between two large
+// pieces (a hemisphere put elsewhere whole) is trusted on both sides.
+TEST(MapFit, DistrustsSmallTornPiecesAndLetsThemFollow) {
+    const TriangleMesh sphere = make_icosphere(3);
+    const double edge = mean_edge_length(sphere);
+    const double area = lumped_masses(sphere, MassType::Barycentric).sum();
+    const Eigen::RowVector3d shift(0.3, -0.2, 0.5);
+    Eigen::MatrixX3d placement = sphere.V.rowwise() + shift;
+    const std::vector<std::vector<Eigen::Index>> rings =
+        vertex_neighbours(sphere.F, sphere.V.rows());
+    std::vector<Eigen::Index> torn = rings[0];
+    torn.push_back(0);
+    for (const Eigen::Index v : torn) {
+        placement.row(v) += Eigen::RowVector3d(5, 0, 0);
+    }
+    const Eigen::VectorXd trusted = detail::trusted_vertices(sphere, placement, edge, area / 60);
+    EXPECT_EQ(trusted.sum(), static_cast<double>(sphere.V.rows() - torn.size()));
+    for (const Eigen::Index v : torn) {
+        EXPECT_EQ(trusted(v), 0) << "vertex " << v;
+    }
+    const Eigen::MatrixX3d fitted = detail::fitted_to_map(sphere, placement, 0.1, trusted);
+    EXPECT_LT((fitted - (sphere.V.rowwise() + shift)).cwiseAbs().maxCoeff(), 1e-6);
+
+    Eigen::MatrixX3d halves = sphere.V;
+    for (Eigen::Index v = 0; v < sphere.V.rows(); ++v) {
+        if (sphere.V(v, 2) > 0) {
+            halves.row(v) += Eigen::RowVector3d(5, 0, 0);
+        }
+    }
+    EXPECT_EQ(detail::trusted_vertices(sphere, halves, edge, area / 60).sum(),
+              static_cast<double>(sphere.V.rows()));
+}
+
+TEST(MapFit, RefusesAPlacementOfAnotherSizeAndANonPositiveLength) {
+    const TriangleMesh sphere = make_icosphere(2);
+    EXPECT_THROW((void)detail::fitted_to_map(sphere, sphere.V.topRows(10), 0.1), InvalidInput);
+    EXPECT_THROW((void)detail::fitted_to_map(sphere, sphere.V, 0.1, Eigen::VectorXd::Ones(10)),
+                 InvalidInput);
+    EXPECT_THROW((void)detail::fitted_to_map(sphere, sphere.V, 0), InvalidInput);
+    EXPECT_THROW((void)detail::trusted_vertices(sphere, sphere.V.topRows(10), 0.1, 0.1),
+                 InvalidInput);
+}
+
+}  // namespace
+}  // namespace genflow
