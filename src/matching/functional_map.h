@@ -47,6 +47,12 @@ struct VertexMap {
     std::vector<Eigen::Index> target_vertex;  ///< per template vertex
     Eigen::VectorXd template_masses;          ///< lumped (barycentric), as the eigenbasis's
     Eigen::Index functions = 0;               ///< eigenfunctions of the map (0: none was found)
+
+    /// The smallest part's area the map tells apart: 1/functions of the template's (60
+    /// functions tell about 60 regions apart). Needs functions > 0.
+    [[nodiscard]] double resolved_area() const {
+        return template_masses.sum() / static_cast<double>(functions);
+    }
 };
 
 /// The map of `functions` non-constant eigenfunctions that a match implies: ZoomOut from 10 by 5

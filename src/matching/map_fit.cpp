@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "matching/map_fit.h"
 
-#include <cmath>
 #include <string>
 
 #include "genflow/exceptions.h"
@@ -9,7 +8,9 @@
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mass_matrix.h"
 #include "mesh/union_find.h"
+#include "metrics/metric_support.h"
 #include "numerics/spd_solver.h"
+#include "operators/triangle.h"
 
 namespace genflow::detail {
 
@@ -50,20 +51,23 @@ Eigen::MatrixX3d fitted_to_map(const TriangleMesh& deformed, const Eigen::Matrix
         throw InvalidInput("fitted_to_map: the placement or the weights have not the " +
                            std::to_string(deformed.V.rows()) + " rows of the mesh");
     }
-    if (!(length > 0) || !std::isfinite(length)) {
-        throw InvalidInput("fitted_to_map: the length must be positive and finite");
+    if (!finite_above(length, 0)) {
+        throw InvalidInput("fitted_to_map: the length must be positive and finite, got " +
+                           std::to_string(length));
     }
     const Eigen::VectorXd masses = lumped_masses(deformed, MassType::Barycentric);
     const Eigen::VectorXd weighted =
         weights.size() > 0 ? Eigen::VectorXd(weights.cwiseProduct(masses)) : masses;
     // The differential of ½‖X − P‖²_{WM} is W M (X − P); one step along its gradient in the
-    // metric W M + λK, of length 1. A component of the mesh with no weight stays where it is
-    // (the tiny ε M keeps the system definite there).
+    // metric W M + λK, of length 1. A component of the mesh with no weight stays where it is:
+    // the tiny ε M keeps the system definite there, with M floored as the metrics floor it, so
+    // that a vertex without area (all its faces degenerate) does not make it singular.
     constexpr double kEpsilon = 1e-10;
     Eigen::SparseMatrix<double> system = length * length * cotan_stiffness(deformed);
     Eigen::SparseMatrix<double> diagonal(system.rows(), system.cols());
     diagonal.setIdentity();
-    diagonal.diagonal() = weighted + kEpsilon * masses;
+    diagonal.diagonal() =
+        weighted + kEpsilon * floored_lumped_masses(deformed, MassType::Barycentric);
     system += diagonal;
     SpdSolver solver;
     solver.compute(system, "fitted_to_map");

@@ -744,8 +744,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         TriangleMesh fitted = flow.mesh;
         const Eigen::MatrixX3d placement = level.target.V(map.target_vertex, Eigen::all);
         const Eigen::VectorXd trusted = detail::trusted_vertices(
-            flow.mesh, placement, mean_edge_length(level.target),
-            map.template_masses.sum() / static_cast<double>(map.functions));
+            flow.mesh, placement, mean_edge_length(level.target), map.resolved_area());
         fitted.V = detail::fitted_to_map(flow.mesh, placement, kMapFitLength * diagonal, trusted);
         FlowResult again = flow_level(l, fitted, options.refinement_iterations, best_start,
                                       options.prior, {}, options.stretch_weight, false);

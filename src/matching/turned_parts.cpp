@@ -75,7 +75,7 @@ std::vector<TurnedPart> find_turned_parts(const TriangleMesh& template_rest,
     }
 
     const Eigen::VectorXd& masses = map.template_masses;
-    const double min_area = masses.sum() / static_cast<double>(map.functions);
+    const double min_area = map.resolved_area();
     std::vector<std::pair<double, TurnedPart>> found;
     for (std::vector<Eigen::Index>& vertices : members) {
         if (vertices.size() < 4 || masses(vertices).sum() < min_area) {

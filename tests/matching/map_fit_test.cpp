@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "genflow/exceptions.h"
@@ -86,12 +87,29 @@ TEST(MapFit, DistrustsSmallTornPiecesAndLetsThemFollow) {
               static_cast<double>(sphere.V.rows()));
 }
 
+// A vertex without area (in no face here; in degenerate faces only after a collapse) has no
+// mass and no stiffness: the fit leaves it where it is instead of failing to factor.
+TEST(MapFit, LeavesAVertexWithoutAreaWhereItIs) {
+    TriangleMesh sphere = make_icosphere(2);
+    sphere.V.conservativeResize(sphere.V.rows() + 1, 3);
+    sphere.V.bottomRows(1) = Eigen::RowVector3d(3, 0, 0);
+    const Eigen::RowVector3d shift(0.3, -0.2, 0.5);
+    const Eigen::MatrixX3d placement = sphere.V.rowwise() + shift;
+    const Eigen::MatrixX3d fitted = detail::fitted_to_map(sphere, placement, 0.1);
+    EXPECT_LT((fitted.topRows(sphere.V.rows() - 1) - placement.topRows(sphere.V.rows() - 1))
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-9);
+    EXPECT_EQ(fitted.bottomRows(1), sphere.V.bottomRows(1));
+}
+
 TEST(MapFit, RefusesAPlacementOfAnotherSizeAndANonPositiveLength) {
     const TriangleMesh sphere = make_icosphere(2);
     EXPECT_THROW((void)detail::fitted_to_map(sphere, sphere.V.topRows(10), 0.1), InvalidInput);
     EXPECT_THROW((void)detail::fitted_to_map(sphere, sphere.V, 0.1, Eigen::VectorXd::Ones(10)),
                  InvalidInput);
     EXPECT_THROW((void)detail::fitted_to_map(sphere, sphere.V, 0), InvalidInput);
+    EXPECT_THROW((void)detail::fitted_to_map(sphere, sphere.V, std::nan("")), InvalidInput);
     EXPECT_THROW((void)detail::trusted_vertices(sphere, sphere.V.topRows(10), 0.1, 0.1),
                  InvalidInput);
 }
