@@ -162,7 +162,7 @@ void run_eval(const EvalOptions& options) {
                 {"intrinsic_disagreement", number_or_null(result.intrinsic_disagreement)},
                 {"second_opinion", result.second_opinion},
                 {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
-                {"fitted_to_map", result.fitted_to_map},
+                {"map_fits", result.map_fits},
                 {"seconds", result.seconds}};
             rows.push_back(row);
             if (!options.json) {

@@ -34,7 +34,6 @@ struct MatchCommandOptions {
     MatchOptions match;
     bool no_align = false;
     bool no_turn_back = false;
-    bool no_map_fit = false;
     bool json = false;
     bool quiet = false;
 };
@@ -107,7 +106,6 @@ void run_match(const MatchCommandOptions& options) {
     }
     job.options.align = !options.no_align;
     job.options.turn_back_parts = !options.no_turn_back;
-    job.options.fit_to_map = !options.no_map_fit;
     job.progress_bar = !options.json && !options.quiet;
     const nlohmann::json summary = run_match_job(std::move(job));
     if (summary["doubtful"].get<bool>()) {
@@ -274,9 +272,13 @@ void register_match_command(CLI::App& app) {
                       "Do not turn back the parts that a fine functional map (60 eigenfunctions) "
                       "places turned over in their own place (a hand palm for back) after the "
                       "refinement");
-    command->add_flag("--no-map-fit", options->no_map_fit,
-                      "Do not draw the refined match towards where that map puts it (kept only "
-                      "where the heat kernel signatures then agree better with the target)");
+    command
+        ->add_option("--map-fits", options->match.map_fits,
+                     "At most this many fits of the refined match to where that map puts it, "
+                     "each kept only if the heat kernel signatures then agree better with the "
+                     "target (0: none)")
+        ->check(CLI::Range(0, 100))
+        ->capture_default_str();
     command->add_flag("--implicit", options->match.implicit,
                       "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
     command->add_flag("--no-align", options->no_align,

@@ -66,7 +66,7 @@ nlohmann::json run_match_job(MatchJob job) {
         {"eigenfunction_guidance", result.eigenfunction_guidance},
         {"refinement_guidance", result.refinement_guidance},
         {"turned_parts", result.turned_parts},
-        {"fitted_to_map", result.fitted_to_map},
+        {"map_fits", result.map_fits},
         {"intrinsic_disagreement", number_or_null(result.intrinsic_disagreement)},
         {"doubtful", result.doubtful()},
         {"second_opinion", result.second_opinion},

@@ -87,8 +87,8 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         options.contenders < 1 || !detail::finite_at_least(options.contender_tolerance, 0) ||
         options.guidance_candidates < 1 || options.guidance_candidates > 8 ||
         options.refinement_guidances < 0 || options.refinement_guidances > 8 ||
-        options.refinement_iterations < 0 || std::isnan(options.second_opinion_above) ||
-        options.second_opinion_above < 0) {
+        options.refinement_iterations < 0 || options.map_fits < 0 ||
+        std::isnan(options.second_opinion_above) || options.second_opinion_above < 0) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
@@ -96,7 +96,7 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
             "signature_guidance >= 0, eigenfunction_guidance >= 0, stretch_weight >= 0, "
             "stiffness_candidates >= 1, contenders >= 1, contender_tolerance >= 0, "
             "guidance_candidates in [1, 8], refinement_guidances in [0, 8], "
-            "refinement_iterations >= 0 and second_opinion_above >= 0");
+            "refinement_iterations >= 0, map_fits >= 0 and second_opinion_above >= 0");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -131,9 +131,13 @@ std::unique_ptr<Metric> make_metric(const MatchOptions& options, MatchPrior prio
 
 namespace {
 
-// MatchOptions::fit_to_map: the smoothing length of the fit over the target's bounding-box
+// MatchOptions::map_fits: the smoothing length of a fit over the target's bounding-box
 // diagonal.
 constexpr double kMapFitLength = 0.01;
+// The share by which a fit after the first must lower the signatures' discrepancy: more than
+// it changes between the successive maps of a converged fit (−2.0 … +4.6 % on the 10 results
+// measured, docs/eval/results.md).
+constexpr double kMapFitProgress = 0.05;
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -734,27 +738,39 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     };
 
     // The refined level drawn towards where the fine map puts it, where the map does not tear
-    // off small pieces, and flowed again (MatchOptions::fit_to_map); kept if its heat kernel
-    // signatures then agree better with the target's.
-    const auto fit_to_map = [&](int l, FlowResult& flow, const detail::VertexMap& map) {
-        if (map.functions < 1) {
-            return;
-        }
+    // off small pieces, and flowed again (MatchOptions::map_fits); kept if its heat kernel
+    // signatures then agree better with the target's. Each further fit starts from the map of
+    // the level as last fitted and must do clearly better (kMapFitProgress).
+    const auto fit_to_map = [&](int l, const TriangleMesh& rest, FlowResult& flow,
+                                detail::VertexMap map) {
         const Level& level = pyramid[static_cast<std::size_t>(l)];
-        TriangleMesh fitted = flow.mesh;
-        const Eigen::MatrixX3d placement = level.target.V(map.target_vertex, Eigen::all);
-        const Eigen::VectorXd trusted = detail::trusted_vertices(
-            flow.mesh, placement, mean_edge_length(level.target), map.resolved_area());
-        fitted.V = detail::fitted_to_map(flow.mesh, placement, kMapFitLength * diagonal, trusted);
-        FlowResult again = flow_level(l, fitted, options.refinement_iterations, best_start,
-                                      options.prior, {}, options.stretch_weight, false);
         const std::vector<Eigen::Index> rows = coarsest_rows(l);
-        if (!cancelled && spectral->discrepancy(again.mesh.V(rows, Eigen::all)) <
-                              spectral->discrepancy(flow.mesh.V(rows, Eigen::all))) {
+        double discrepancy = spectral->discrepancy(flow.mesh.V(rows, Eigen::all));
+        for (int fit = 0; fit < options.map_fits && !cancelled; ++fit) {
+            if (fit > 0) {
+                map = detail::zoomed_out_map(rest, flow.mesh.V, level.target);
+            }
+            if (map.functions < 1) {
+                return;
+            }
+            TriangleMesh fitted = flow.mesh;
+            const Eigen::MatrixX3d placement = level.target.V(map.target_vertex, Eigen::all);
+            const Eigen::VectorXd trusted = detail::trusted_vertices(
+                flow.mesh, placement, mean_edge_length(level.target), map.resolved_area());
+            fitted.V =
+                detail::fitted_to_map(flow.mesh, placement, kMapFitLength * diagonal, trusted);
+            FlowResult again = flow_level(l, fitted, options.refinement_iterations, best_start,
+                                          options.prior, {}, options.stretch_weight, false);
+            const double fitted_discrepancy = spectral->discrepancy(again.mesh.V(rows, Eigen::all));
+            const double required = fit == 0 ? 1 : 1 - kMapFitProgress;
+            if (cancelled || !(fitted_discrepancy < required * discrepancy)) {
+                return;
+            }
             again.steps += flow.steps;
             again.energy.front() = flow.energy.front();
             flow = std::move(again);
-            result.fitted_to_map = true;
+            discrepancy = fitted_discrepancy;
+            ++result.map_fits;
         }
     };
 
@@ -770,16 +786,16 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         FlowResult flow = refined_level ? refine(l, moved)
                                         : flow_level(l, moved, options.fine_iterations, best_start,
                                                      options.prior);
-        // One fine map serves both.
-        if (refined_level && (options.turn_back_parts || options.fit_to_map) && !cancelled) {
+        // One fine map serves the turn-back and the first fit.
+        if (refined_level && (options.turn_back_parts || options.map_fits > 0) && !cancelled) {
             TriangleMesh rest = level.template_mesh;
             rest.V = best_start.apply(rest.V);
             const detail::VertexMap map = detail::zoomed_out_map(rest, flow.mesh.V, level.target);
             if (options.turn_back_parts) {
                 turn_back(l, rest, flow, map);
             }
-            if (options.fit_to_map && !cancelled) {
-                fit_to_map(l, flow, map);
+            if (!cancelled) {
+                fit_to_map(l, rest, flow, map);
             }
         }
         result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));

@@ -46,8 +46,8 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
     EXPECT_LT(json["hausdorff_over_diagonal"].get<double>(), 0.05);
     EXPECT_EQ(json["levels"].size(), 1u);
-    EXPECT_EQ(json["turned_parts"], 0);       // the rigid prior has no refinement to turn back
-    EXPECT_EQ(json["fitted_to_map"], false);  // nor to fit to the fine map
+    EXPECT_EQ(json["turned_parts"], 0);  // the rigid prior has no refinement to turn back
+    EXPECT_EQ(json["map_fits"], 0);      // nor to fit to the fine map
     EXPECT_GT(json["intrinsic_disagreement"].get<double>(), 0);
     EXPECT_EQ(json["doubtful"], false);
     EXPECT_EQ(json["second_opinion"], false);
@@ -77,13 +77,14 @@ TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
                                 quoted(directory / "out.ply") + " --prior isometric --no-align";
     const auto result = run_genflow(
         command +
-        " --rigidity-length 0.3 --fake-edges 20 --implicit --no-turn-back --no-map-fit --json");
+        " --rigidity-length 0.3 --fake-edges 20 --implicit --no-turn-back --map-fits 0 --json");
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto json = nlohmann::json::parse(result.out);
     EXPECT_EQ(json["prior"], "isometric");
     EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
-    const auto refused = run_genflow(command + " --rigidity-length -1");
-    EXPECT_NE(refused.exit_code, 0);
+    for (const char* refused_option : {" --rigidity-length -1", " --map-fits -1"}) {
+        EXPECT_NE(run_genflow(command + refused_option).exit_code, 0) << refused_option;
+    }
     for (const char* threshold : {"-0.1", "nan"}) {
         const auto no_threshold =
             run_genflow(command + " --second-opinion-above " + std::string(threshold));

@@ -733,6 +733,9 @@ TEST(Match, RefinementKeepsOneFlowOfTheNextLevelAndReportsIt) {
     options.refinement_guidances = 2;
     options.refinement_iterations = -1;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
+    options.refinement_iterations = 50;
+    options.map_fits = -1;
+    EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
 }
 
 // The independent coarsest flows run side by side, but the progress callback sees one flow
