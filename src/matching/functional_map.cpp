@@ -3,11 +3,6 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
-#include <string>
-
-#include "genflow/exceptions.h"
-#include "genflow/operators/laplacian_eigenbasis.h"
-#include "spatial/point_index.h"
 
 namespace genflow::detail {
 
@@ -60,38 +55,6 @@ std::vector<Eigen::Index> zoom_out(const Eigen::MatrixXd& from_functions,
             return correspondence;
         }
     }
-}
-
-VertexMap zoomed_out_map(const TriangleMesh& template_rest, const Eigen::MatrixX3d& deformed,
-                         const TriangleMesh& target, int functions) {
-    if (deformed.rows() != template_rest.V.rows()) {
-        throw InvalidInput("zoomed_out_map: the deformed template has " +
-                           std::to_string(deformed.rows()) + " vertices, not " +
-                           std::to_string(template_rest.V.rows()));
-    }
-    const LaplacianEigenbasis from = laplacian_eigenbasis(template_rest, functions + 1);
-    const LaplacianEigenbasis to = laplacian_eigenbasis(target, functions + 1);
-    VertexMap map;
-    map.template_masses = from.masses;
-    // Without the constant function.
-    map.functions = std::min(from.values.size(), to.values.size()) - 1;
-    if (map.functions < 1) {
-        return map;
-    }
-    const PointIndex target_points(target.V);
-    std::vector<Eigen::Index> correspondence(static_cast<std::size_t>(deformed.rows()));
-    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
-        correspondence[static_cast<std::size_t>(i)] =
-            target_points.nearest(deformed.row(i).transpose()).first;
-    }
-    const auto count = map.functions;
-    constexpr Eigen::Index kFirstSize = 10;
-    constexpr Eigen::Index kStep = 5;
-    map.target_vertex =
-        zoom_out(from.functions.middleCols(1, count), from.masses,
-                 to.functions.middleCols(1, count), embedding_weights(to.values.segment(1, count)),
-                 std::move(correspondence), kFirstSize, count, kStep);
-    return map;
 }
 
 }  // namespace genflow::detail

@@ -20,7 +20,7 @@
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/mesh_size.h"
-#include "matching/functional_map.h"
+#include "matching/fine_spectrum.h"
 #include "matching/intrinsic_start.h"
 #include "matching/map_fit.h"
 #include "matching/spectral_descriptors.h"
@@ -741,14 +741,14 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     // off small pieces, and flowed again (MatchOptions::map_fits); kept if its heat kernel
     // signatures then agree better with the target's. Each further fit starts from the map of
     // the level as last fitted and must do clearly better (kMapFitProgress).
-    const auto fit_to_map = [&](int l, const TriangleMesh& rest, FlowResult& flow,
+    const auto fit_to_map = [&](int l, const detail::FineSpectrum& spectrum, FlowResult& flow,
                                 detail::VertexMap map) {
         const Level& level = pyramid[static_cast<std::size_t>(l)];
         const std::vector<Eigen::Index> rows = coarsest_rows(l);
         double discrepancy = spectral->discrepancy(flow.mesh.V(rows, Eigen::all));
         for (int fit = 0; fit < options.map_fits && !cancelled; ++fit) {
             if (fit > 0) {
-                map = detail::zoomed_out_map(rest, flow.mesh.V, level.target);
+                map = spectrum.zoomed_out_map(flow.mesh.V);
             }
             if (map.functions < 1) {
                 return;
@@ -790,12 +790,13 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         if (refined_level && (options.turn_back_parts || options.map_fits > 0) && !cancelled) {
             TriangleMesh rest = level.template_mesh;
             rest.V = best_start.apply(rest.V);
-            const detail::VertexMap map = detail::zoomed_out_map(rest, flow.mesh.V, level.target);
+            const detail::FineSpectrum spectrum(rest, level.target);
+            const detail::VertexMap map = spectrum.zoomed_out_map(flow.mesh.V);
             if (options.turn_back_parts) {
                 turn_back(l, rest, flow, map);
             }
             if (!cancelled) {
-                fit_to_map(l, rest, flow, map);
+                fit_to_map(l, spectrum, flow, map);
             }
         }
         result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));

@@ -9,7 +9,6 @@
 #include "genflow/exceptions.h"
 #include "genflow/mesh/edges.h"
 #include "genflow/operators/mesh_size.h"
-#include "matching/functional_map.h"
 #include "mesh/union_find.h"
 #include "numerics/nearest_orthogonal.h"
 

@@ -80,7 +80,8 @@ TEST(TurnedParts, TurnsThePartBackAndBlendsItsRegion) {
 // A perfect match of a mesh onto itself: the map (ZoomOut from the identity) disputes nothing.
 TEST(TurnedParts, FindsNothingInAPerfectMatch) {
     const TurnedEnd limb;
-    const detail::VertexMap map = detail::zoomed_out_map(limb.rest, limb.rest.V, limb.rest);
+    const detail::FineSpectrum spectrum(limb.rest, limb.rest);
+    const detail::VertexMap map = spectrum.zoomed_out_map(limb.rest.V);
     EXPECT_EQ(map.functions, 60);
     const Eigen::MatrixX3d mapped = limb.rest.V(map.target_vertex, Eigen::all);
     EXPECT_LT(mean_distance(limb, mapped, limb.rest.V, -10, 10),
@@ -89,8 +90,7 @@ TEST(TurnedParts, FindsNothingInAPerfectMatch) {
     EXPECT_THROW(
         (void)detail::find_turned_parts(limb.rest, limb.rest.V.topRows(10), limb.rest, map),
         InvalidInput);
-    EXPECT_THROW((void)detail::zoomed_out_map(limb.rest, limb.rest.V.topRows(10), limb.rest),
-                 InvalidInput);
+    EXPECT_THROW((void)spectrum.zoomed_out_map(limb.rest.V.topRows(10)), InvalidInput);
 }
 
 }  // namespace

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+#include "matching/fine_spectrum.h"
+
+#include <algorithm>
+#include <string>
+
+#include "genflow/exceptions.h"
+#include "matching/functional_map.h"
+
+namespace genflow::detail {
+
+FineSpectrum::FineSpectrum(const TriangleMesh& template_rest, const TriangleMesh& target,
+                           int functions)
+    : template_basis_(laplacian_eigenbasis(template_rest, functions + 1)),
+      target_basis_(laplacian_eigenbasis(target, functions + 1)),
+      target_points_(target.V) {}
+
+VertexMap FineSpectrum::zoomed_out_map(const Eigen::MatrixX3d& deformed) const {
+    if (deformed.rows() != template_basis_.functions.rows()) {
+        throw InvalidInput("zoomed_out_map: the deformed template has " +
+                           std::to_string(deformed.rows()) + " vertices, not " +
+                           std::to_string(template_basis_.functions.rows()));
+    }
+    VertexMap map;
+    map.template_masses = template_basis_.masses;
+    // Without the constant function.
+    map.functions = std::min(template_basis_.values.size(), target_basis_.values.size()) - 1;
+    if (map.functions < 1) {
+        map.functions = 0;
+        return map;
+    }
+    std::vector<Eigen::Index> correspondence(static_cast<std::size_t>(deformed.rows()));
+    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
+        correspondence[static_cast<std::size_t>(i)] =
+            target_points_.nearest(deformed.row(i).transpose()).first;
+    }
+    const auto count = map.functions;
+    constexpr Eigen::Index kFirstSize = 10;
+    constexpr Eigen::Index kStep = 5;
+    map.target_vertex =
+        zoom_out(template_basis_.functions.middleCols(1, count), template_basis_.masses,
+                 target_basis_.functions.middleCols(1, count),
+                 embedding_weights(target_basis_.values.segment(1, count)),
+                 std::move(correspondence), kFirstSize, count, kStep);
+    return map;
+}
+
+}  // namespace genflow::detail

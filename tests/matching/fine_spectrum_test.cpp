@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+#include "matching/fine_spectrum.h"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "genflow/exceptions.h"
+#include "genflow/mesh/primitives.h"
+#include "genflow/operators/mesh_size.h"
+
+namespace genflow {
+namespace {
+
+// The limb (about 6 long), its +x end bent by 90° at x = 1, as the template placed right and as
+// a target sampled anew.
+struct BentLimb {
+    TriangleMesh rest = make_limb(4);
+    TriangleMesh target = bent(make_limb(4, 7));
+    Eigen::MatrixX3d placed = bent(rest).V;
+
+    static TriangleMesh bent(TriangleMesh mesh) {
+        mesh.V = bend_at_joints(mesh.V, {Joint{.centre = Eigen::Vector3d(1, 0, 0),
+                                               .direction = Eigen::Vector3d::UnitX(),
+                                               .axis = Eigen::Vector3d::UnitZ(),
+                                               .angle = std::numbers::pi / 2,
+                                               .width = 0.3}});
+        return mesh;
+    }
+
+    // Mean distance of a placement of the template from the right one.
+    [[nodiscard]] double error(const Eigen::MatrixX3d& placement) const {
+        return (placement - placed).rowwise().norm().mean();
+    }
+};
+
+// ZoomOut from a placement slid along the limb (by 0.3 in its rest frame, a few faces) puts
+// the vertices back near where they belong: the map follows the shape's intrinsic geometry, not
+// the nearest surface.
+TEST(FineSpectrum, MapFromASlidPlacementPutsTheVerticesBack) {
+    const BentLimb limb;
+    const detail::FineSpectrum spectrum(limb.rest, limb.target);
+    TriangleMesh slid = limb.rest;
+    slid.V.col(0).array() += 0.3;
+    const Eigen::MatrixX3d slid_placement = BentLimb::bent(slid).V;
+    const detail::VertexMap map = spectrum.zoomed_out_map(slid_placement);
+    EXPECT_EQ(map.functions, 60);
+    EXPECT_EQ(map.target_vertex.size(), static_cast<std::size_t>(limb.rest.V.rows()));
+    const double before = limb.error(slid_placement);
+    const double after = limb.error(limb.target.V(map.target_vertex, Eigen::all));
+    std::printf("mean distance from the right placement: slid %.4f, mapped %.4f\n", before, after);
+    EXPECT_LT(after, 0.5 * before);
+    EXPECT_LT(after, 0.025 * bounding_box_diagonal(limb.target));
+}
+
+TEST(FineSpectrum, RefusesAPlacementOfAnotherSize) {
+    const BentLimb limb;
+    const detail::FineSpectrum spectrum(limb.rest, limb.target);
+    EXPECT_THROW((void)spectrum.zoomed_out_map(limb.placed.topRows(10)), InvalidInput);
+}
+
+}  // namespace
+}  // namespace genflow
