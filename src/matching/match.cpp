@@ -743,20 +743,22 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     // the level as last fitted and must do clearly better (kMapFitProgress).
     const auto fit_to_map = [&](int l, const detail::FineSpectrum& spectrum, FlowResult& flow,
                                 detail::VertexMap map) {
+        // Every map of the spectrum has as many functions as the first.
+        if (map.functions < 1) {
+            return;
+        }
         const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const double target_edge = mean_edge_length(level.target);
         const std::vector<Eigen::Index> rows = coarsest_rows(l);
         double discrepancy = spectral->discrepancy(flow.mesh.V(rows, Eigen::all));
         for (int fit = 0; fit < options.map_fits && !cancelled; ++fit) {
             if (fit > 0) {
                 map = spectrum.zoomed_out_map(flow.mesh.V);
             }
-            if (map.functions < 1) {
-                return;
-            }
             TriangleMesh fitted = flow.mesh;
             const Eigen::MatrixX3d placement = level.target.V(map.target_vertex, Eigen::all);
-            const Eigen::VectorXd trusted = detail::trusted_vertices(
-                flow.mesh, placement, mean_edge_length(level.target), map.resolved_area());
+            const Eigen::VectorXd trusted =
+                detail::trusted_vertices(flow.mesh, placement, target_edge, map.resolved_area());
             fitted.V =
                 detail::fitted_to_map(flow.mesh, placement, kMapFitLength * diagonal, trusted);
             FlowResult again = flow_level(l, fitted, options.refinement_iterations, best_start,
