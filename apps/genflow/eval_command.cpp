@@ -118,8 +118,12 @@ void run_eval(const EvalOptions& options) {
         }
         std::optional<PartModel> parts;
         if (pair.contains("template_parts")) {  // optional: for the articulated prior
-            PartFiles files{base / field(file, pair, "template_parts"), std::nullopt, std::nullopt,
-                            std::filesystem::path(field(file, pair, "template")).stem().string()};
+            PartFiles files{base / field(file, pair, "template_parts")};
+            files.template_name =
+                std::filesystem::path(field(file, pair, "template")).stem().string();
+            if (pair.contains("template_parts_pose")) {
+                files.pose = field(file, pair, "template_parts_pose");
+            }
             if (pair.contains("template_part_labels")) {
                 files.labels = base / field(file, pair, "template_part_labels");
             }

@@ -97,9 +97,7 @@ void run_match(const MatchCommandOptions& options) {
         if (!options.part_weights.empty()) {
             files.weights = options.part_weights;
         }
-        if (files.pose.empty()) {  // the SMPL layout keys joint centres by mesh name
-            files.pose = std::filesystem::path(options.template_path).stem().string();
-        }
+        files.template_name = std::filesystem::path(options.template_path).stem().string();
         job.options.parts = read_part_model(files, template_mesh.mesh.V.rows());
     } else if (job.options.prior == MatchPrior::Articulated) {
         throw InvalidInput("match: --prior articulated needs --parts PARTS.json");
@@ -174,7 +172,9 @@ void register_match_command(CLI::App& app) {
                         "Per-vertex part weights ('vertex part weight' lines), if the JSON "
                         "names none");
     command->add_option("--parts-pose", options->parts_pose,
-                        "Entry of \"joint_centers\" to use (default: the template's file name)");
+                        "The pose of the part file the template is in (its joint centres "
+                        "moved there; default: the pose the template's file name, or its last "
+                        "'_'-separated word, names, else the rest pose)");
     command
         ->add_option("--levels", options->match.levels,
                      "Resolution levels (0: automatic, coarsest about 1000 vertices)")

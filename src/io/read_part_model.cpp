@@ -5,6 +5,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -40,6 +41,71 @@ Eigen::Vector3d point(const std::filesystem::path& file, const json& value,
     return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
 }
 
+// A 4×4 transform given as four rows of four numbers; its top three rows act on points.
+Eigen::Matrix4d transform(const std::filesystem::path& file, const json& value,
+                          const std::string& what) {
+    Eigen::Matrix4d matrix;
+    bool valid = value.is_array() && value.size() == 4;
+    for (int r = 0; r < 4 && valid; ++r) {
+        const json& row = value[static_cast<std::size_t>(r)];
+        valid = row.is_array() && row.size() == 4;
+        for (int c = 0; c < 4 && valid; ++c) {
+            valid = row[static_cast<std::size_t>(c)].is_number();
+            if (valid) {
+                matrix(r, c) = row[static_cast<std::size_t>(c)].get<double>();
+            }
+        }
+    }
+    if (!valid || !matrix.allFinite()) {
+        fail(file, what + " must be four rows of four finite numbers");
+    }
+    return matrix;
+}
+
+Eigen::Vector3d moved(const Eigen::Matrix4d& transform, const Eigen::Vector3d& point) {
+    return transform.topLeftCorner<3, 3>() * point + transform.topRightCorner<3, 1>();
+}
+
+std::string keys_of(const json& table) {
+    std::string keys;
+    for (const auto& [key, unused] : table.items()) {
+        keys += (keys.empty() ? "" : ", ") + key;
+    }
+    return keys;
+}
+
+// The pose the template is in, a key of `poses` (a part file's table of poses): the one asked
+// for (refused if not there), else the template's name or its last '_'-separated word if
+// either is a key ("arm_pose1": "pose1"); std::nullopt for none of them.
+std::optional<std::string> chosen_pose(const std::filesystem::path& file, const json& poses,
+                                       const PartFiles& files) {
+    if (!poses.is_object()) {
+        fail(file, "its poses must be an object keyed by pose name");
+    }
+    if (!files.pose.empty()) {
+        if (!poses.contains(files.pose)) {
+            fail(file, "no pose '" + files.pose + "' (it has " + keys_of(poses) + ")");
+        }
+        return files.pose;
+    }
+    const std::string& name = files.template_name;
+    if (!name.empty() && poses.contains(name)) {
+        return name;
+    }
+    const auto underscore = name.rfind('_');
+    if (underscore != std::string::npos && poses.contains(name.substr(underscore + 1))) {
+        return name.substr(underscore + 1);
+    }
+    return std::nullopt;
+}
+
+// A pose asked for of a part file that has none.
+void refuse_pose(const std::filesystem::path& file, const PartFiles& files) {
+    if (!files.pose.empty()) {
+        fail(file, "has no poses, so no pose '" + files.pose + "'");
+    }
+}
+
 // The non-empty, non-comment lines of a text file, split on whitespace.
 std::vector<std::vector<std::string>> rows(const std::filesystem::path& file) {
     std::istringstream text(read_text(file));
@@ -70,7 +136,7 @@ T number(const std::filesystem::path& file, const std::string& text, std::size_t
 }
 
 std::vector<Part> parse_tree(const std::filesystem::path& file, const json& document,
-                             const std::string& pose) {
+                             const PartFiles& files) {
     std::vector<Part> parts;
     std::map<std::string, int> index_of;
     const auto add_names = [&] {
@@ -103,6 +169,25 @@ std::vector<Part> parse_tree(const std::filesystem::path& file, const json& docu
                              point(file, bones[b].value("joint_center", json()),
                                    "bone " + std::to_string(b) + " joint_center")});
         }
+        // The joint at a bone's head moves with the bone.
+        if (!document.contains("pose_bone_transforms_4x4")) {
+            refuse_pose(file, files);
+            return parts;
+        }
+        const json& poses = document["pose_bone_transforms_4x4"];
+        if (const auto pose = chosen_pose(file, poses, files)) {
+            const json& transforms = poses[*pose];
+            if (!transforms.is_array() || transforms.size() != parts.size()) {
+                fail(file, "pose '" + *pose + "' must hold one transform per bone (" +
+                               std::to_string(parts.size()) + ")");
+            }
+            for (std::size_t b = 0; b < parts.size(); ++b) {
+                parts[b].joint_centre =
+                    moved(transform(file, transforms[b],
+                                    "pose '" + *pose + "' bone " + std::to_string(b)),
+                          parts[b].joint_centre);
+            }
+        }
         return parts;
     }
     if (!document.contains("parts") || !document["parts"].is_array()) {
@@ -122,18 +207,14 @@ std::vector<Part> parse_tree(const std::filesystem::path& file, const json& docu
         if (!centres.is_object() || centres.empty()) {
             fail(file, "no \"joint_centers\"");
         }
-        std::string chosen = pose;
-        if (chosen.empty() || !centres.contains(chosen)) {
-            if (centres.size() != 1) {
-                std::string keys;
-                for (const auto& [key, unused] : centres.items()) {
-                    keys += (keys.empty() ? "" : ", ") + key;
-                }
-                fail(file, "several poses in \"joint_centers\" (" + keys +
-                               "); choose one (--parts-pose)" +
-                               (pose.empty() ? "" : "; '" + pose + "' is not among them"));
-            }
+        std::string chosen;
+        if (const auto pose = chosen_pose(file, centres, files)) {
+            chosen = *pose;
+        } else if (centres.size() == 1) {
             chosen = centres.begin().key();
+        } else {
+            fail(file, "several poses in \"joint_centers\" (" + keys_of(centres) +
+                           "); choose one (--parts-pose)");
         }
         for (Part& part : parts) {
             part.parent = parent_index(parents.value(part.name, json()));
@@ -153,6 +234,24 @@ std::vector<Part> parse_tree(const std::filesystem::path& file, const json& docu
     add_names();
     for (std::size_t p = 0; p < list.size(); ++p) {
         parts[p].parent = parent_index(list[p].value("parent", json()));
+    }
+    // The joint linking a part to its parent moves with the part.
+    if (!document.contains("poses")) {
+        refuse_pose(file, files);
+        return parts;
+    }
+    if (const auto pose = chosen_pose(file, document["poses"], files)) {
+        const json& transforms = document["poses"][*pose];
+        for (Part& part : parts) {
+            const std::string what = "pose '" + *pose + "' part '" + part.name + "'";
+            if (!transforms.is_object() || !transforms.contains(part.name) ||
+                !transforms[part.name].is_object()) {
+                fail(file, what + " has no world_transform_4x4");
+            }
+            part.joint_centre = moved(
+                transform(file, transforms[part.name].value("world_transform_4x4", json()), what),
+                part.joint_centre);
+        }
     }
     return parts;
 }
@@ -214,7 +313,7 @@ PartModel read_part_model(const PartFiles& files, Eigen::Index vertices) {
     }
     PartModel model;
     try {
-        model.parts = parse_tree(files.tree, document, files.pose);
+        model.parts = parse_tree(files.tree, document, files);
     } catch (const json::exception& e) {
         fail(files.tree, e.what());
     }

@@ -132,6 +132,22 @@ TEST(MatchCli, RefusesBadInputAndWritesNothing) {
     EXPECT_NE(wrong_truth.err.find("small.ply: the ground truth has"), std::string::npos)
         << wrong_truth.err;
     EXPECT_FALSE(std::filesystem::exists(out));
+    // A pose the part file does not have.
+    {
+        std::ofstream(directory / "parts.json")
+            << R"({"parts": [{"name": "limb", "parent": null, "joint_center": [0, 0, 0]}],
+                   "labels": "labels.txt"})";
+        std::ofstream labels(directory / "labels.txt");
+        for (Eigen::Index v = 0; v < make_limb(2).V.rows(); ++v) {
+            labels << "0\n";
+        }
+    }
+    const auto no_pose = run_genflow(
+        "match " + quoted(directory / "limb.ply") + " " + quoted(directory / "limb.ply") + " -o " +
+        quoted(out) + " --parts " + quoted(directory / "parts.json") + " --parts-pose pose1");
+    EXPECT_EQ(no_pose.exit_code, 2);
+    EXPECT_NE(no_pose.err.find("parts.json: has no poses"), std::string::npos) << no_pose.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
     const auto unknown_prior =
         run_genflow("match " + quoted(directory / "limb.ply") + " " +
                     quoted(directory / "limb.ply") + " -o " + quoted(out) + " --prior banana");

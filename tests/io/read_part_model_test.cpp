@@ -69,6 +69,68 @@ TEST(ReadPartModel, ReadsTheThreeLayouts) {
     expect_refused({d / "smpl.json", d / "two.txt"}, 2, d / "smpl.json");  // which pose?
 }
 
+// A rig's template in one of its poses: each joint centre moves with the part below it, by the
+// part's 4×4 world transform (rows), as the rig posed the mesh.
+TEST(ReadPartModel, MovesTheJointCentresToTheTemplatesPose) {
+    const test::TemporaryDirectory d;
+    write(d / "weights.txt", "0 0 1\n1 1 1\n");
+    // Bone 1 turned a quarter about z and moved by (1, 2, 3): its joint (1, 0, 0) goes to
+    // (0, 1, 0) + (1, 2, 3).
+    write(d / "bones.json",
+          R"({"bones": [{"index": 0, "parent_bone": null, "joint_center": [0, 0, 0]},
+                        {"index": 1, "parent_bone": 0, "joint_center": [1, 0, 0]}],
+              "pose_bone_transforms_4x4": {
+                "pose1": [[[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]],
+                          [[0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]]}})");
+    PartFiles bones{d / "bones.json", std::nullopt, d / "weights.txt"};
+    const Eigen::Vector3d posed(1, 3, 3);
+    bones.pose = "pose1";
+    EXPECT_TRUE(read_part_model(bones, 2).parts[1].joint_centre.isApprox(posed));
+    bones.pose.clear();
+    bones.template_name = "arm_pose1";  // named by the template's last word
+    EXPECT_TRUE(read_part_model(bones, 2).parts[1].joint_centre.isApprox(posed));
+    bones.template_name = "arm_rest";  // no such pose: the rest pose
+    EXPECT_EQ(read_part_model(bones, 2).parts[1].joint_centre, Eigen::Vector3d(1, 0, 0));
+    bones.pose = "pose9";
+    expect_refused(bones, 2, d / "bones.json");
+
+    // The MakeHuman layout: a world transform per part name.
+    write(d / "named.json",
+          R"({"parts": [{"name": "a", "parent": null, "joint_center": [0, 0, 0]},
+                        {"name": "b", "parent": "a", "joint_center": [1, 0, 0]}],
+              "poses": {"pose2": {
+                "a": {"world_transform_4x4": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]},
+                "b": {"world_transform_4x4": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]}}}})");
+    PartFiles named{d / "named.json", std::nullopt, d / "weights.txt"};
+    named.template_name = "body_pose2";
+    EXPECT_EQ(read_part_model(named, 2).parts[1].joint_centre, Eigen::Vector3d(1, 0, 5));
+    // A part without its transform, and a transform of three rows, are refused.
+    write(d / "partial.json",
+          R"({"parts": [{"name": "a", "parent": null, "joint_center": [0, 0, 0]},
+                        {"name": "b", "parent": "a", "joint_center": [1, 0, 0]}],
+              "poses": {"pose2": {
+                "a": {"world_transform_4x4": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}}}})");
+    expect_refused({d / "partial.json", std::nullopt, d / "weights.txt", "pose2"}, 2,
+                   d / "partial.json");
+    // A pose asked of a file without poses is refused; a template name is not.
+    write(d / "rest.json",
+          R"({"parts": [{"name": "a", "parent": null, "joint_center": [0, 0, 0]},
+                        {"name": "b", "parent": "a", "joint_center": [1, 0, 0]}]})");
+    expect_refused({d / "rest.json", std::nullopt, d / "weights.txt", "pose1"}, 2, d / "rest.json");
+    EXPECT_NO_THROW((void)read_part_model(
+        {d / "rest.json", std::nullopt, d / "weights.txt", "", "body_pose1"}, 2));
+
+    // The SMPL layout finds its entry by the template's name too.
+    write(d / "smpl.json",
+          R"({"parts": ["hips", "leg"], "parent": {"hips": null, "leg": "hips"},
+              "joint_centers": {"scan_a": {"hips": [0, 0, 0], "leg": [0, -1, 0]},
+                                "scan_b": {"hips": [0, 0, 0], "leg": [0, -2, 0]}}})");
+    EXPECT_EQ(read_part_model({d / "smpl.json", std::nullopt, d / "weights.txt", "", "scan_b"}, 2)
+                  .parts[1]
+                  .joint_centre,
+              Eigen::Vector3d(0, -2, 0));
+}
+
 TEST(ReadPartModel, RefusesFilesThatDoNotFitAndNamesThem) {
     const test::TemporaryDirectory d;
     write(d / "tree.json",

@@ -174,9 +174,9 @@ TEST(RealPairs, ArticulatedArmUnwindsByRepeatedFits) {
     const TriangleMesh truth = read_mesh(rig / "arm_pose2.ply");
     MatchOptions options;
     options.prior = MatchPrior::Articulated;
-    options.parts = read_part_model(
-        PartFiles{rig / "arm_rig.json", std::nullopt, rig / "arm_bone_weights.txt", "arm_rest"},
-        template_mesh.V.rows());
+    options.parts =
+        read_part_model(PartFiles{rig / "arm_rig.json", std::nullopt, rig / "arm_bone_weights.txt"},
+                        template_mesh.V.rows());
     const MatchResult result = match(template_mesh, read_mesh(target_path), options);
     const CorrespondenceError error = correspondence_error(result.deformed.V, truth);
     std::printf("articulated arm: mean error %.4f, %ld stranded, %d fits to the fine map\n",

@@ -12,18 +12,27 @@ namespace genflow {
 /// The files that describe a template's parts (README, "Part files").
 struct PartFiles {
     /// The part tree, JSON, in one of three layouts:
-    ///  - {"parts": [{"name", "parent": name or null, "joint_center": [x, y, z]}, ...]}
-    ///  - {"bones": [{"index", "parent_bone": index or null, "joint_center": [x, y, z]}, ...]}
+    ///  - {"parts": [{"name", "parent": name or null, "joint_center": [x, y, z]}, ...]},
+    ///    optionally with "poses": {pose: {name: {"world_transform_4x4": rows}}} (MakeHuman)
+    ///  - {"bones": [{"index", "parent_bone": index or null, "joint_center": [x, y, z]}, ...]},
+    ///    optionally with "pose_bone_transforms_4x4": {pose: [rows per bone]} (libigl)
     ///  - {"parts": [names], "parent": {name: name or null}, "joint_centers": {pose: {name:
-    ///    [x, y, z]}}}, with `pose` choosing the entry (needed only if there are several).
+    ///    [x, y, z]}}} (SMPL), one entry needed (the only one, or the template's pose).
+    /// The joint centres of the first two are at rest; the template's pose, if the file has it,
+    /// moves each by the transform of its part (the part below the joint), as the rig posed it.
     /// It may name its per-vertex file with "labels" or "weights" (relative to the JSON).
     std::filesystem::path tree;
     /// One part index (0-based) per line, line i for vertex i; `#` lines are comments.
     std::optional<std::filesystem::path> labels = {};
     /// Lines "vertex part weight" (sparse); the weights of each vertex must sum to 1.
     std::optional<std::filesystem::path> weights = {};
-    /// Which entry of "joint_centers" to use in the third layout.
+    /// The pose the template is in: a key of the file's poses ("joint_centers", "poses" or
+    /// "pose_bone_transforms_4x4"); refused if the file does not have it. Empty: the pose that
+    /// `template_name` or its last '_'-separated word names ("arm_pose1": "pose1"), if the file
+    /// has it; else the rest pose (or, in the third layout, its only entry).
     std::string pose = {};
+    /// The template's file name without its extension, to find its pose by.
+    std::string template_name = {};
 };
 
 /// Reads a part model for a template of `vertices` vertices and checks it
