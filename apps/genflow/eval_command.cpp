@@ -166,6 +166,7 @@ void run_eval(const EvalOptions& options) {
                 {"intrinsic_disagreement", number_or_null(result.intrinsic_disagreement)},
                 {"second_opinion", result.second_opinion},
                 {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
+                {"alternative_start", result.alternative_start},
                 {"map_fits", result.map_fits},
                 {"seconds", result.seconds}};
             rows.push_back(row);

@@ -268,6 +268,13 @@ void register_match_command(CLI::App& app) {
         ->check(CLI::Range(0, 100000))
         ->capture_default_str();
     add_second_opinion_option(*command, options->match.second_opinion_above);
+    command
+        ->add_option("--alternative-starts", options->match.alternative_starts,
+                     "A result still doubtful after the second opinion is matched again from "
+                     "the intrinsic starts of up to this many further landmark sets, while it "
+                     "stays doubtful; the one that disagrees least is kept (0: none)")
+        ->check(CLI::Range(0, 7))
+        ->capture_default_str();
     command->add_flag("--no-turn-back", options->no_turn_back,
                       "Do not turn back the parts that a fine functional map (60 eigenfunctions) "
                       "places turned over in their own place (a hand palm for back) after the "

@@ -71,6 +71,8 @@ nlohmann::json run_match_job(MatchJob job) {
         {"doubtful", result.doubtful()},
         {"second_opinion", result.second_opinion},
         {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
+        {"alternative_starts", result.alternative_starts},
+        {"alternative_start", result.alternative_start},
         {"hausdorff", distances.hausdorff},
         {"mean_distance", distances.mean},
         {"target_bbox_diagonal", diagonal},

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <numeric>
 #include <vector>
 
 #include "genflow/matching/multiresolution.h"
@@ -385,13 +386,13 @@ double orientation(const TriangleMesh& from, const TriangleMesh& to,
 
 }  // namespace
 
-std::optional<IntrinsicStart> intrinsic_start(const TriangleMesh& template_mesh,
-                                              const TriangleMesh& target) {
+std::vector<IntrinsicStart> intrinsic_starts(const TriangleMesh& template_mesh,
+                                             const TriangleMesh& target, std::size_t count) {
     const Shape from = analyse(template_mesh);
     const Shape to = analyse(target);
     const std::vector<LandmarkSet> candidates = landmark_candidates(from, to);
-    if (candidates.empty()) {
-        return std::nullopt;
+    if (candidates.empty() || count == 0) {
+        return {};
     }
     const Eigen::Index functions =
         std::min({kFunctions, from.functions.cols(), to.functions.cols()});
@@ -405,35 +406,60 @@ std::optional<IntrinsicStart> intrinsic_start(const TriangleMesh& template_mesh,
         orientations.push_back(
             orientation(from.coarse.mesh, to.coarse.mesh, to_normals, maps.back()));
     }
+    // The preferred set: the most consistent of those that keep the orientation about as well
+    // as the best; then the others, the best kept orientation first.
     const double most = *std::max_element(orientations.begin(), orientations.end());
-    std::size_t kept = 0;
-    while (orientations[kept] < most - kOrientationMargin) {
-        ++kept;
-    }
-    const std::vector<Eigen::Index>& correspondence = maps[kept];
-    IntrinsicStart start;
-    start.orientation = orientations[kept];
-    start.landmarks = static_cast<int>(candidates[kept].size());
+    std::vector<std::size_t> order(candidates.size());
+    std::iota(order.begin(), order.end(), 0);
+    const auto preferred = static_cast<std::ptrdiff_t>(
+        std::find_if(order.begin(), order.end(),
+                     [&](std::size_t k) { return orientations[k] >= most - kOrientationMargin; }) -
+        order.begin());
+    std::rotate(order.begin(), order.begin() + preferred, order.begin() + preferred + 1);
+    std::stable_sort(order.begin() + 1, order.end(), [&](std::size_t a, std::size_t b) {
+        return orientations[a] > orientations[b];
+    });
 
     // Each template vertex goes where its nearest analysed vertex at rest goes (itself, for
     // the vertices the analysis kept).
     const PointIndex analysed(from.coarse.mesh.V);
-    start.placement.resize(template_mesh.V.rows(), 3);
+    std::vector<Eigen::Index> analysed_vertex(static_cast<std::size_t>(template_mesh.V.rows()));
     for (Eigen::Index v = 0; v < template_mesh.V.rows(); ++v) {
-        const auto nearest = analysed.nearest(template_mesh.V.row(v).transpose()).first;
-        start.placement.row(v) =
-            to.coarse.mesh.V.row(correspondence[static_cast<std::size_t>(nearest)]);
+        analysed_vertex[static_cast<std::size_t>(v)] =
+            analysed.nearest(template_mesh.V.row(v).transpose()).first;
     }
-    const Eigen::Matrix4d fit =
-        Eigen::umeyama(template_mesh.V.transpose(), start.placement.transpose(), true);
-    const double scale = fit.block<3, 1>(0, 0).norm();
-    if (!(scale > 0) || !fit.allFinite()) {
-        return std::nullopt;  // every vertex put on one point: no start to speak of
+    std::vector<IntrinsicStart> starts;
+    for (std::size_t rank = 0; rank < order.size() && starts.size() < count; ++rank) {
+        const std::size_t k = order[rank];
+        IntrinsicStart start;
+        start.orientation = orientations[k];
+        start.landmarks = static_cast<int>(candidates[k].size());
+        start.placement.resize(template_mesh.V.rows(), 3);
+        for (Eigen::Index v = 0; v < template_mesh.V.rows(); ++v) {
+            start.placement.row(v) = to.coarse.mesh.V.row(
+                maps[k][static_cast<std::size_t>(analysed_vertex[static_cast<std::size_t>(v)])]);
+        }
+        const Eigen::Matrix4d fit =
+            Eigen::umeyama(template_mesh.V.transpose(), start.placement.transpose(), true);
+        const double scale = fit.block<3, 1>(0, 0).norm();
+        if (!(scale > 0) || !fit.allFinite()) {
+            continue;  // every vertex put on one point: no start to speak of
+        }
+        start.similarity.scale = scale;
+        start.similarity.rotation = fit.topLeftCorner<3, 3>() / scale;
+        start.similarity.translation = fit.topRightCorner<3, 1>();
+        starts.push_back(std::move(start));
     }
-    start.similarity.scale = scale;
-    start.similarity.rotation = fit.topLeftCorner<3, 3>() / scale;
-    start.similarity.translation = fit.topRightCorner<3, 1>();
-    return start;
+    return starts;
+}
+
+std::optional<IntrinsicStart> intrinsic_start(const TriangleMesh& template_mesh,
+                                              const TriangleMesh& target) {
+    std::vector<IntrinsicStart> starts = intrinsic_starts(template_mesh, target, 1);
+    if (starts.empty()) {
+        return std::nullopt;
+    }
+    return std::move(starts.front());
 }
 
 }  // namespace genflow::detail

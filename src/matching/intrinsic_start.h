@@ -18,7 +18,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <optional>
+#include <vector>
 
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh.h"
@@ -45,5 +47,14 @@ struct IntrinsicStart {
 /// \throws InvalidInput if a mesh is invalid or has no area.
 [[nodiscard]] std::optional<IntrinsicStart> intrinsic_start(const TriangleMesh& template_mesh,
                                                             const TriangleMesh& target);
+
+/// Up to `count` intrinsic starts from different landmark sets, the preferred one first (that
+/// of intrinsic_start()), then the others by how well their maps keep the orientation: where
+/// a symmetry makes the preferred one wrong (the kneeling man matched front to back), one of
+/// the next is often right. Sets whose map puts every vertex on one point are left out.
+/// \throws InvalidInput if a mesh is invalid or has no area.
+[[nodiscard]] std::vector<IntrinsicStart> intrinsic_starts(const TriangleMesh& template_mesh,
+                                                           const TriangleMesh& target,
+                                                           std::size_t count);
 
 }  // namespace genflow::detail

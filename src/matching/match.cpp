@@ -88,7 +88,8 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         options.guidance_candidates < 1 || options.guidance_candidates > 8 ||
         options.refinement_guidances < 0 || options.refinement_guidances > 8 ||
         options.refinement_iterations < 0 || options.map_fits < 0 ||
-        std::isnan(options.second_opinion_above) || options.second_opinion_above < 0) {
+        options.alternative_starts < 0 || std::isnan(options.second_opinion_above) ||
+        options.second_opinion_above < 0) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
@@ -96,7 +97,8 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
             "signature_guidance >= 0, eigenfunction_guidance >= 0, stretch_weight >= 0, "
             "stiffness_candidates >= 1, contenders >= 1, contender_tolerance >= 0, "
             "guidance_candidates in [1, 8], refinement_guidances in [0, 8], "
-            "refinement_iterations >= 0, map_fits >= 0 and second_opinion_above >= 0");
+            "refinement_iterations >= 0, map_fits >= 0, alternative_starts >= 0 and "
+            "second_opinion_above >= 0");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -568,22 +570,25 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         };
         // The second opinion joins the contenders from the intrinsic start; none without an
         // eigenbasis or landmarks (the first opinion then stands). Returns whether it joined.
-        std::optional<detail::IntrinsicStart> intrinsic;
+        // The intrinsic starts of the next landmark sets wait for a doubtful result.
+        std::vector<detail::IntrinsicStart> intrinsic;
         const std::size_t rigid_contenders = contenders.size();
         const auto add_intrinsic_contender = [&] {
             try {
-                intrinsic = detail::intrinsic_start(coarsest.template_mesh, coarsest.target);
+                intrinsic = detail::intrinsic_starts(
+                    coarsest.template_mesh, coarsest.target,
+                    1 + static_cast<std::size_t>(options.alternative_starts));
             } catch (const SolverError&) {
-                intrinsic.reset();
+                intrinsic.clear();
             }
-            if (intrinsic) {
-                starts.push_back(intrinsic->similarity);
+            if (!intrinsic.empty()) {
+                starts.push_back(intrinsic.front().similarity);
                 contenders.push_back(starts.size() - 1);
             }
-            return intrinsic.has_value();
+            return !intrinsic.empty();
         };
         const auto placement_of = [&](std::size_t k) {
-            return k < rigid_contenders ? nullptr : &intrinsic->placement;
+            return k < rigid_contenders ? nullptr : &intrinsic[k - rigid_contenders].placement;
         };
         // Asked of every match, the second opinion contends from the start, side by side with
         // the rigid contenders: it costs what one more contender does.
@@ -616,8 +621,32 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             }
         }
         if (contenders.size() > rigid_contenders) {
-            result.second_opinion_disagreement = outcomes.back().disagreement;
-            result.second_opinion = kept == outcomes.size() - 1;
+            result.second_opinion_disagreement = outcomes[rigid_contenders].disagreement;
+            result.second_opinion = kept == rigid_contenders;
+        }
+        // A doubtful result is matched again from the intrinsic starts of the next landmark
+        // sets, side by side; the one that disagrees least is kept
+        // (MatchOptions::alternative_starts).
+        if (!cancelled && intrinsic.size() > 1 &&
+            outcomes[kept].disagreement > kDoubtfulDisagreement) {
+            const std::size_t first = outcomes.size();
+            for (std::size_t next = 1; next < intrinsic.size(); ++next) {
+                starts.push_back(intrinsic[next].similarity);
+                contenders.push_back(starts.size() - 1);
+            }
+            outcomes.resize(contenders.size());
+            run_side_by_side(intrinsic.size() - 1, [&](std::size_t k) {
+                outcomes[first + k] = guided_match(contenders[first + k], k == 0,
+                                                   placement_of(rigid_contenders + 1 + k));
+            });
+            result.alternative_starts = static_cast<int>(intrinsic.size() - 1);
+            for (std::size_t k = first; k < outcomes.size() && !cancelled; ++k) {
+                if (outcomes[k].disagreement < outcomes[kept].disagreement) {
+                    kept = k;
+                    result.second_opinion = false;
+                    result.alternative_start = static_cast<int>(k - first + 1);
+                }
+            }
         }
         chosen = contenders[kept];
         int steps = 0;

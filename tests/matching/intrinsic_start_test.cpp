@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "genflow/mesh/primitives.h"
 #include "genflow/operators/mesh_size.h"
 #include "support/test_meshes.h"
@@ -31,6 +33,31 @@ TEST(IntrinsicStart, PlacesAPosedFigureWhereItBelongs) {
     }
     EXPECT_LT(core / count / bounding_box_diagonal(figure.target), 0.05);
     EXPECT_NEAR(start->similarity.scale, figure.motion.scale, 0.1 * figure.motion.scale);
+}
+
+// The next landmark sets' starts come after the preferred one, each from another set: the
+// figure's spikes matched otherwise put the template elsewhere, and keep the orientation no
+// better than the preferred start.
+TEST(IntrinsicStart, RanksTheOtherLandmarkSetsAfterThePreferredOne) {
+    const test::PosedSpikedFigure figure;
+    const std::optional<detail::IntrinsicStart> preferred =
+        detail::intrinsic_start(figure.template_mesh, figure.target);
+    const std::vector<detail::IntrinsicStart> starts =
+        detail::intrinsic_starts(figure.template_mesh, figure.target, 4);
+    ASSERT_TRUE(preferred.has_value());
+    ASSERT_GE(starts.size(), 2U);
+    EXPECT_LE(starts.size(), 4U);
+    EXPECT_EQ(starts.front().placement, preferred->placement);
+    for (std::size_t k = 1; k < starts.size(); ++k) {
+        EXPECT_GT(figure.mean_distance(starts[k].placement),
+                  figure.mean_distance(preferred->placement))
+            << k;
+        EXPECT_LE(starts[k].orientation, starts.front().orientation + 0.1) << k;
+        if (k > 1) {
+            EXPECT_LE(starts[k].orientation, starts[k - 1].orientation) << k;
+        }
+    }
+    EXPECT_TRUE(detail::intrinsic_starts(figure.template_mesh, figure.target, 0).empty());
 }
 
 }  // namespace

@@ -736,6 +736,9 @@ TEST(Match, RefinementKeepsOneFlowOfTheNextLevelAndReportsIt) {
     options.refinement_iterations = 50;
     options.map_fits = -1;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
+    options.map_fits = 6;
+    options.alternative_starts = -1;
+    EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
 }
 
 // The independent coarsest flows run side by side, but the progress callback sees one flow
