@@ -36,8 +36,9 @@ TEST(IntrinsicStart, PlacesAPosedFigureWhereItBelongs) {
 }
 
 // The next landmark sets' starts come after the preferred one, each from another set: the
-// figure's spikes matched otherwise put the template elsewhere, and keep the orientation no
-// better than the preferred start.
+// figure's spikes matched otherwise put the template elsewhere. They come by how well their
+// maps keep the orientation, none by more than the margin better than the preferred one's
+// (which is the most consistent set within it).
 TEST(IntrinsicStart, RanksTheOtherLandmarkSetsAfterThePreferredOne) {
     const test::PosedSpikedFigure figure;
     const std::optional<detail::IntrinsicStart> preferred =
