@@ -271,8 +271,8 @@ void register_match_command(CLI::App& app) {
     command
         ->add_option("--alternative-starts", options->match.alternative_starts,
                      "A result still doubtful after the second opinion is matched again from "
-                     "the intrinsic starts of up to this many further landmark sets, while it "
-                     "stays doubtful; the one that disagrees least is kept (0: none)")
+                     "the intrinsic starts of up to this many further landmark sets, side by "
+                     "side; the one that disagrees least is kept (0: none)")
         ->check(CLI::Range(0, 7))
         ->capture_default_str();
     command->add_flag("--no-turn-back", options->no_turn_back,

@@ -99,10 +99,26 @@ std::optional<std::string> chosen_pose(const std::filesystem::path& file, const 
     return std::nullopt;
 }
 
-// A pose asked for of a part file that has none.
-void refuse_pose(const std::filesystem::path& file, const PartFiles& files) {
-    if (!files.pose.empty()) {
-        fail(file, "has no poses, so no pose '" + files.pose + "'");
+// Moves each joint centre with the part below it to the template's pose, if the file has a
+// table of poses under `key` and the template is in one of them (else they stay at rest; a
+// pose asked of a file without the table is refused). `transform_of(entry, pose, p)` is part
+// p's 4×4 transform in the pose's entry of the table.
+template <typename TransformOf>
+void move_to_pose(const std::filesystem::path& file, const json& document, const char* key,
+                  const PartFiles& files, std::vector<Part>& parts,
+                  const TransformOf& transform_of) {
+    if (!document.contains(key)) {
+        if (!files.pose.empty()) {
+            fail(file, "has no poses, so no pose '" + files.pose + "'");
+        }
+        return;
+    }
+    const json& poses = document[key];
+    if (const auto pose = chosen_pose(file, poses, files)) {
+        for (std::size_t p = 0; p < parts.size(); ++p) {
+            parts[p].joint_centre =
+                moved(transform_of(poses[*pose], *pose, p), parts[p].joint_centre);
+        }
     }
 }
 
@@ -170,24 +186,15 @@ std::vector<Part> parse_tree(const std::filesystem::path& file, const json& docu
                                    "bone " + std::to_string(b) + " joint_center")});
         }
         // The joint at a bone's head moves with the bone.
-        if (!document.contains("pose_bone_transforms_4x4")) {
-            refuse_pose(file, files);
-            return parts;
-        }
-        const json& poses = document["pose_bone_transforms_4x4"];
-        if (const auto pose = chosen_pose(file, poses, files)) {
-            const json& transforms = poses[*pose];
-            if (!transforms.is_array() || transforms.size() != parts.size()) {
-                fail(file, "pose '" + *pose + "' must hold one transform per bone (" +
-                               std::to_string(parts.size()) + ")");
-            }
-            for (std::size_t b = 0; b < parts.size(); ++b) {
-                parts[b].joint_centre =
-                    moved(transform(file, transforms[b],
-                                    "pose '" + *pose + "' bone " + std::to_string(b)),
-                          parts[b].joint_centre);
-            }
-        }
+        move_to_pose(file, document, "pose_bone_transforms_4x4", files, parts,
+                     [&](const json& transforms, const std::string& pose, std::size_t b) {
+                         if (!transforms.is_array() || transforms.size() != parts.size()) {
+                             fail(file, "pose '" + pose + "' must hold one transform per bone (" +
+                                            std::to_string(parts.size()) + ")");
+                         }
+                         return transform(file, transforms[b],
+                                          "pose '" + pose + "' bone " + std::to_string(b));
+                     });
         return parts;
     }
     if (!document.contains("parts") || !document["parts"].is_array()) {
@@ -236,23 +243,17 @@ std::vector<Part> parse_tree(const std::filesystem::path& file, const json& docu
         parts[p].parent = parent_index(list[p].value("parent", json()));
     }
     // The joint linking a part to its parent moves with the part.
-    if (!document.contains("poses")) {
-        refuse_pose(file, files);
-        return parts;
-    }
-    if (const auto pose = chosen_pose(file, document["poses"], files)) {
-        const json& transforms = document["poses"][*pose];
-        for (Part& part : parts) {
-            const std::string what = "pose '" + *pose + "' part '" + part.name + "'";
-            if (!transforms.is_object() || !transforms.contains(part.name) ||
-                !transforms[part.name].is_object()) {
-                fail(file, what + " has no world_transform_4x4");
-            }
-            part.joint_centre = moved(
-                transform(file, transforms[part.name].value("world_transform_4x4", json()), what),
-                part.joint_centre);
-        }
-    }
+    move_to_pose(file, document, "poses", files, parts,
+                 [&](const json& transforms, const std::string& pose, std::size_t p) {
+                     const std::string& name = parts[p].name;
+                     const std::string what = "pose '" + pose + "' part '" + name + "'";
+                     if (!transforms.is_object() || !transforms.contains(name) ||
+                         !transforms[name].is_object()) {
+                         fail(file, what + " has no world_transform_4x4");
+                     }
+                     return transform(file, transforms[name].value("world_transform_4x4", json()),
+                                      what);
+                 });
     return parts;
 }
 

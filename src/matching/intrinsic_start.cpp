@@ -7,7 +7,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <numeric>
 #include <vector>
 
 #include "genflow/matching/multiresolution.h"
@@ -409,13 +408,16 @@ std::vector<IntrinsicStart> intrinsic_starts(const TriangleMesh& template_mesh,
     // The preferred set: the most consistent of those that keep the orientation about as well
     // as the best; then the others, the best kept orientation first.
     const double most = *std::max_element(orientations.begin(), orientations.end());
-    std::vector<std::size_t> order(candidates.size());
-    std::iota(order.begin(), order.end(), 0);
-    const auto preferred = static_cast<std::ptrdiff_t>(
-        std::find_if(order.begin(), order.end(),
-                     [&](std::size_t k) { return orientations[k] >= most - kOrientationMargin; }) -
-        order.begin());
-    std::rotate(order.begin(), order.begin() + preferred, order.begin() + preferred + 1);
+    std::size_t preferred = 0;
+    while (orientations[preferred] < most - kOrientationMargin) {
+        ++preferred;
+    }
+    std::vector<std::size_t> order{preferred};
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+        if (k != preferred) {
+            order.push_back(k);
+        }
+    }
     std::stable_sort(order.begin() + 1, order.end(), [&](std::size_t a, std::size_t b) {
         return orientations[a] > orientations[b];
     });

@@ -773,7 +773,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     const auto fit_to_map = [&](int l, const detail::FineSpectrum& spectrum, FlowResult& flow,
                                 detail::VertexMap map) {
         // Every map of the spectrum has as many functions as the first.
-        if (map.functions < 1) {
+        if (map.functions < 1 || options.map_fits < 1) {
             return;
         }
         const Level& level = pyramid[static_cast<std::size_t>(l)];

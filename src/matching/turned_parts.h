@@ -51,9 +51,9 @@ struct TurnedPartOptions {
 
 /// The parts of `deformed` (the template's vertices as a match placed them; `template_rest` the
 /// same template at rest, for its connectivity) that `map`, the functional map from the
-/// template to `target` (FineSpectrum::zoomed_out_map() of 60 functions from this match), places
-/// turned, largest first. \throws InvalidInput if `deformed` or `map` does not have the template's
-/// vertex count.
+/// template to `target` (FineSpectrum::zoomed_out_map(), 60 functions, from this match),
+/// places turned, largest first.
+/// \throws InvalidInput if `deformed` or `map` does not have the template's vertex count.
 [[nodiscard]] std::vector<TurnedPart> find_turned_parts(const TriangleMesh& template_rest,
                                                         const Eigen::MatrixX3d& deformed,
                                                         const TriangleMesh& target,
