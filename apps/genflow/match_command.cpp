@@ -34,6 +34,7 @@ struct MatchCommandOptions {
     MatchOptions match;
     bool no_align = false;
     bool no_turn_back = false;
+    bool no_limb_swaps = false;
     bool json = false;
     bool quiet = false;
 };
@@ -104,6 +105,7 @@ void run_match(const MatchCommandOptions& options) {
     }
     job.options.align = !options.no_align;
     job.options.turn_back_parts = !options.no_turn_back;
+    job.options.swap_limbs = !options.no_limb_swaps;
     job.progress_bar = !options.json && !options.quiet;
     const nlohmann::json summary = run_match_job(std::move(job));
     if (summary["doubtful"].get<bool>()) {
@@ -275,6 +277,10 @@ void register_match_command(CLI::App& app) {
                      "side; the one that disagrees least is kept (0: none)")
         ->check(CLI::Range(0, 7))
         ->capture_default_str();
+    command->add_flag("--no-limb-swaps", options->no_limb_swaps,
+                      "Do not check whether the match put two limbs on each other's places (a "
+                      "left leg on the right one) by which way the extremities lie, nor match "
+                      "again with them exchanged");
     command->add_flag("--no-turn-back", options->no_turn_back,
                       "Do not turn back the parts that a fine functional map (60 eigenfunctions) "
                       "places turned over in their own place (a hand palm for back) after the "

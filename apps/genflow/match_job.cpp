@@ -73,6 +73,7 @@ nlohmann::json run_match_job(MatchJob job) {
         {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
         {"alternative_starts", result.alternative_starts},
         {"alternative_start", result.alternative_start},
+        {"swapped_limbs", result.swapped_limbs},
         {"hausdorff", distances.hausdorff},
         {"mean_distance", distances.mean},
         {"target_bbox_diagonal", diagonal},

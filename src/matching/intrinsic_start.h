@@ -24,6 +24,7 @@
 
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh.h"
+#include "matching/intrinsic_shape.h"
 
 namespace genflow::detail {
 
@@ -56,5 +57,21 @@ struct IntrinsicStart {
 [[nodiscard]] std::vector<IntrinsicStart> intrinsic_starts(const TriangleMesh& template_mesh,
                                                            const TriangleMesh& target,
                                                            std::size_t count);
+
+/// intrinsic_starts() from the shapes' analyses (analyse_intrinsic_shape() of the template and
+/// of the target), which the caller may use for more.
+[[nodiscard]] std::vector<IntrinsicStart> intrinsic_starts(const TriangleMesh& template_mesh,
+                                                           const IntrinsicShape& from,
+                                                           const IntrinsicShape& to,
+                                                           std::size_t count);
+
+/// The start that puts each vertex of `template_mesh` (the mesh `from` analyses) where `map`
+/// (a vertex of `to` per vertex of `from`) puts its nearest analysed vertex, and the
+/// similarity that agrees with it (`landmarks` and `orientation` left 0); std::nullopt if it
+/// puts every vertex on one point.
+[[nodiscard]] std::optional<IntrinsicStart> start_from_map(const TriangleMesh& template_mesh,
+                                                           const IntrinsicShape& from,
+                                                           const IntrinsicShape& to,
+                                                           const std::vector<Eigen::Index>& map);
 
 }  // namespace genflow::detail

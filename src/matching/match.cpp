@@ -24,6 +24,7 @@
 #include "matching/intrinsic_start.h"
 #include "matching/map_fit.h"
 #include "matching/spectral_descriptors.h"
+#include "matching/swapped_limbs.h"
 #include "matching/turned_parts.h"
 #include "operators/triangle.h"
 
@@ -140,6 +141,26 @@ constexpr double kMapFitLength = 0.01;
 // it changes between the successive maps of a converged fit (−2.0 … +4.6 % on the 10 results
 // measured, docs/eval/results.md).
 constexpr double kMapFitProgress = 0.05;
+// MatchOptions::swap_limbs, at the coarsest level (swapped_limbs.h), measured on the 45 h1
+// results of docs/eval:
+// - how much an exchange of two limbs' places must raise the turning functions' agreement to
+//   be tried, and the match from it to be kept: the three results with a pair of limbs swapped
+//   gained 0.12–0.38 from the best exchange;
+// - how well the map must then agree, as right maps do: 0.46–0.80 for 37 of the 45 (the
+//   makehuman hand's rest → pose 1 0.19), 0.48–0.58 for the three with their limbs exchanged
+//   back; TOSCA michael kneeling to standing with his hands exchanged 0.16, from 0.04 (his
+//   hands rest on his thighs; 4.0 % off, 22 % after);
+// - how much more that match may disagree intrinsically: the signatures cannot tell left from
+//   right, so exchanging two limbs back leaves them about as they were (−23 … +5 % on the
+//   three); a wrong exchange, the elephant's from rest to frame 300 (3.6 % off, 8.8 % after),
+//   +12 %;
+// - how far from the exchanged places that match may put an exchanged extremity (in units of
+//   √area, twice the extremity radius): 0.05–0.14 on the three, 0.77 on that elephant, whose
+//   match went back.
+constexpr double kLimbSwapMargin = 0.05;
+constexpr double kLimbSwapAgreement = 0.4;
+constexpr double kLimbSwapDisagreement = 0.1;
+constexpr double kLimbSwapDrift = 2 * detail::kExtremityRadius;
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -472,9 +493,11 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             double disagreement = 0;
         };
         // `intrinsic_placement`: that of the intrinsic start s, if s is one (a second opinion).
+        // `from`: where the flows start, if not at start s's rigid placement.
         const auto guided_match = [&](std::size_t s, bool reports,
-                                      const Eigen::MatrixX3d* intrinsic_placement = nullptr) {
-            const TriangleMesh start_mesh = placed(starts[s]);
+                                      const Eigen::MatrixX3d* intrinsic_placement = nullptr,
+                                      const TriangleMesh* from = nullptr) {
+            const TriangleMesh start_mesh = from != nullptr ? *from : placed(starts[s]);
             // The guided flow, then the plain one; the result counts the steps of both.
             const auto guided_then_plain = [&](const PointDescriptors& descriptors,
                                                double stretch_weight, bool reporting) {
@@ -572,11 +595,15 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         // eigenbasis or landmarks (the first opinion then stands). Returns whether it joined.
         // The intrinsic starts of the next landmark sets wait for a doubtful result.
         std::vector<detail::IntrinsicStart> intrinsic;
+        // The shapes' intrinsic analyses, once the second opinion needed them.
+        std::optional<std::pair<detail::IntrinsicShape, detail::IntrinsicShape>> shapes;
         const std::size_t rigid_contenders = contenders.size();
         const auto add_intrinsic_contender = [&] {
             try {
+                shapes.emplace(detail::analyse_intrinsic_shape(coarsest.template_mesh),
+                               detail::analyse_intrinsic_shape(coarsest.target));
                 intrinsic = detail::intrinsic_starts(
-                    coarsest.template_mesh, coarsest.target,
+                    coarsest.template_mesh, shapes->first, shapes->second,
                     1 + static_cast<std::size_t>(options.alternative_starts));
             } catch (const SolverError&) {
                 intrinsic.clear();
@@ -645,6 +672,45 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                     kept = k;
                     result.second_opinion = false;
                     result.alternative_start = static_cast<int>(k - first + 1);
+                }
+            }
+        }
+        // Limbs the kept result put on each other's places (MatchOptions::swap_limbs): matched
+        // again from the result drawn towards the map of the exchanged extremities, kept if
+        // that match keeps the exchanges, its turning functions agree clearly better and as a
+        // right map's do, and its signatures about as well.
+        if (!cancelled && options.swap_limbs && shapes) {
+            const detail::IntrinsicShape& from = shapes->first;
+            const detail::IntrinsicShape& to = shapes->second;
+            const TriangleMesh& matched = outcomes[kept].flow.mesh;
+            const detail::SwappedLimbs swapped = detail::find_swapped_limbs(
+                from, to,
+                detail::place_limbs(from, to, matched.V(from.coarse.fine_vertex, Eigen::all)),
+                kLimbSwapMargin, kLimbSwapAgreement);
+            const std::optional<detail::IntrinsicStart> exchanged =
+                swapped.exchanged.empty()
+                    ? std::nullopt
+                    : detail::start_from_map(
+                          coarsest.template_mesh, from, to,
+                          detail::landmark_map(from, to, from.extremities, swapped.images));
+            if (exchanged) {
+                TriangleMesh drawn = matched;
+                drawn.V =
+                    detail::fitted_to_map(matched, exchanged->placement, kMapFitLength * diagonal);
+                starts.push_back(starts[contenders[kept]]);
+                contenders.push_back(starts.size() - 1);
+                outcomes.push_back(
+                    guided_match(contenders.back(), true, &exchanged->placement, &drawn));
+                const detail::LimbPlacement rematched = detail::place_limbs(
+                    from, to, outcomes.back().flow.mesh.V(from.coarse.fine_vertex, Eigen::all));
+                if (!cancelled &&
+                    detail::exchange_drift(to, swapped, rematched) <= kLimbSwapDrift &&
+                    rematched.agreement >= kLimbSwapAgreement &&
+                    rematched.agreement > swapped.agreement_before + kLimbSwapMargin &&
+                    outcomes.back().disagreement <=
+                        (1 + kLimbSwapDisagreement) * outcomes[kept].disagreement) {
+                    kept = outcomes.size() - 1;
+                    result.swapped_limbs = static_cast<int>(swapped.exchanged.size());
                 }
             }
         }

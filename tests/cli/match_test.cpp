@@ -52,6 +52,7 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(json["doubtful"], false);
     EXPECT_EQ(json["second_opinion"], false);
     EXPECT_TRUE(json["second_opinion_disagreement"].is_null());  // the rigid prior asks none
+    EXPECT_EQ(json["swapped_limbs"], 0);                         // nor checks for swapped limbs
     EXPECT_LT(json["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.02);
     EXPECT_EQ(json["stranded_vertices"], 0);
     EXPECT_TRUE(json["stranded_vertex_indices"].empty());
@@ -77,7 +78,8 @@ TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
                                 quoted(directory / "out.ply") + " --prior isometric --no-align";
     const auto result = run_genflow(
         command +
-        " --rigidity-length 0.3 --fake-edges 20 --implicit --no-turn-back --map-fits 0 --json");
+        " --rigidity-length 0.3 --fake-edges 20 --implicit --no-turn-back --no-limb-swaps"
+        " --map-fits 0 --json");
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto json = nlohmann::json::parse(result.out);
     EXPECT_EQ(json["prior"], "isometric");

@@ -282,6 +282,15 @@ struct MatchOptions {
     /// kneeling (1→2) was matched front to back, 22.2 % mean error; from the next set 4.9 %.
     /// Needs the second opinion (second_opinion_above); 0 = none.
     int alternative_starts = 3;
+    /// Limbs put on each other's places: a template whose stride puts its left leg where the
+    /// target has its right one is matched with the two exchanged, and neither d_H nor the
+    /// heat kernel signatures tell. The turning functions of pairs of extremities do (they
+    /// change sign under a reflection; src/matching/swapped_limbs.h): if exchanging where the
+    /// kept result put two extremities makes them agree clearly better with the target's, the
+    /// result is drawn towards the map of the exchanged extremities and matched again by the
+    /// guided rounds, and kept if its own functions agree clearly better
+    /// (MatchResult::swapped_limbs). Needs the second opinion (its analyses of the shapes).
+    bool swap_limbs = true;
     RigidAlignmentOptions alignment;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
@@ -343,6 +352,9 @@ struct MatchResult {
     /// the second opinion's; 0 = none).
     int alternative_starts = 0;
     int alternative_start = 0;
+    /// How many pairs of limbs MatchOptions::swap_limbs exchanged (0 if its match was not kept,
+    /// or none was tried). The other fields say where the result it started from came from.
+    int swapped_limbs = 0;
     /// How far the coarsest level's result disagrees with the target intrinsically (the
     /// median heat-kernel-signature discrepancy of where its vertices landed, over the
     /// consistency of the functional map that placement implies; the measure that chooses
