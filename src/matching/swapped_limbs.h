@@ -8,11 +8,12 @@
 // agree. What does tell is which way each extremity lies from the rest of the body: the
 // turning function of a pair of extremities (intrinsic_shape.h) changes sign under a reflection,
 // so where the match put a limb on its mirror image, the functions of every pair with its
-// extremity disagree with the target's over most of the body. Measured at full resolution on
-// those three results: the functions' mean correlation with the target's, through the match,
-// 0.38, 0.32 and 0.18; through the ground truth 0.67, 0.60 and 0.82; and exchanging the images
-// of the pair of extremities that raises it most raised it to 0.50, 0.48 and 0.56 (then 0.64,
-// with the elephant's second pair), each time exchanging the two limbs the match had swapped.
+// extremity disagree with the target's over most of the body. Measured with a prototype at full
+// resolution on those three results: the functions' mean correlation with the target's,
+// through the match, 0.38, 0.32 and 0.18; through the ground truth 0.67, 0.60 and 0.82; and
+// exchanging the images of the pair of extremities that raises it most raised it to 0.50, 0.48
+// and 0.56 (then 0.64, with the elephant's second pair), each time exchanging the two limbs the
+// match had swapped.
 #pragma once
 
 #include <Eigen/Core>
