@@ -493,11 +493,11 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             double disagreement = 0;
         };
         // `intrinsic_placement`: that of the intrinsic start s, if s is one (a second opinion).
-        // `from`: where the flows start, if not at start s's rigid placement.
+        // `start_at`: where the flows start, if not at start s's rigid placement.
         const auto guided_match = [&](std::size_t s, bool reports,
                                       const Eigen::MatrixX3d* intrinsic_placement = nullptr,
-                                      const TriangleMesh* from = nullptr) {
-            const TriangleMesh start_mesh = from != nullptr ? *from : placed(starts[s]);
+                                      const TriangleMesh* start_at = nullptr) {
+            const TriangleMesh start_mesh = start_at != nullptr ? *start_at : placed(starts[s]);
             // The guided flow, then the plain one; the result counts the steps of both.
             const auto guided_then_plain = [&](const PointDescriptors& descriptors,
                                                double stretch_weight, bool reporting) {
