@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "genflow/exceptions.h"
+#include "matching/intrinsic_start.h"
 #include "spatial/point_index.h"
 
 namespace genflow::detail {
@@ -135,6 +137,21 @@ SwappedLimbs find_swapped_limbs(const IntrinsicShape& from, const IntrinsicShape
         swapped.agreement_after = swapped.agreement_before;
     }
     return swapped;
+}
+
+std::optional<Eigen::MatrixX3d> exchanged_placement(const TriangleMesh& template_mesh,
+                                                    const IntrinsicShape& from,
+                                                    const IntrinsicShape& to,
+                                                    const SwappedLimbs& swapped) {
+    if (swapped.exchanged.empty()) {
+        return std::nullopt;
+    }
+    std::optional<IntrinsicStart> start = start_from_map(
+        template_mesh, from, to, landmark_map(from, to, from.extremities, swapped.images));
+    if (!start) {
+        return std::nullopt;
+    }
+    return std::move(start->placement);
 }
 
 double exchange_drift(const IntrinsicShape& to, const SwappedLimbs& swapped,

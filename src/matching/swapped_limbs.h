@@ -17,9 +17,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <utility>
 #include <vector>
 
+#include "genflow/mesh.h"
 #include "matching/intrinsic_shape.h"
 
 namespace genflow::detail {
@@ -72,6 +74,15 @@ struct SwappedLimbs {
 [[nodiscard]] SwappedLimbs find_swapped_limbs(const IntrinsicShape& from, const IntrinsicShape& to,
                                               const LimbPlacement& match, double margin,
                                               double least_agreement = 0);
+
+/// Each vertex of `template_mesh` (the mesh `from` analyses, or another in its frame: a level
+/// of its pyramid) where the landmark map of the extremities at their exchanged places puts
+/// it; std::nullopt if `swapped` exchanged nothing, or if that map puts every vertex on one
+/// point.
+[[nodiscard]] std::optional<Eigen::MatrixX3d> exchanged_placement(const TriangleMesh& template_mesh,
+                                                                  const IntrinsicShape& from,
+                                                                  const IntrinsicShape& to,
+                                                                  const SwappedLimbs& swapped);
 
 /// How far (geodesically, in units of √area) a match ended from the exchanges of `swapped`:
 /// the largest distance between where they put an exchanged extremity and where `match` did.

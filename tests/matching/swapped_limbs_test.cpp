@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 #include <vector>
 
 #include "genflow/exceptions.h"
@@ -113,6 +114,36 @@ TEST(SwappedLimbs, TellsWhetherAMatchKeptTheExchanges) {
     const double between = figure.to.distance(found.images[a], found.images[b]);
     EXPECT_NEAR(detail::exchange_drift(figure.to, found, figure.placed(true)), between,
                 0.05 * between);
+}
+
+// The placement by the map of the exchanged extremities puts each leg where it belongs: every
+// template vertex of a leg (at rest, the target is the same figure) near its own place, none
+// near the other leg; nothing when nothing was exchanged.
+TEST(SwappedLimbs, PlacesTheExchangedLimbsWhereTheyBelong) {
+    const SwappedLegs figure;
+    const detail::SwappedLimbs found =
+        detail::find_swapped_limbs(figure.from, figure.to, figure.placed(true), 0.05);
+    ASSERT_EQ(found.exchanged.size(), 1U);
+    const std::optional<Eigen::MatrixX3d> placement =
+        detail::exchanged_placement(figure.template_mesh, figure.from, figure.to, found);
+    ASSERT_TRUE(placement.has_value());
+    ASSERT_EQ(placement->rows(), figure.template_mesh.V.rows());
+    int legs = 0;
+    for (Eigen::Index v = 0; v < placement->rows(); ++v) {
+        const Eigen::RowVector3d rest = figure.template_mesh.V.row(v);
+        if (SwappedLegs::on_a_leg(rest)) {
+            ++legs;
+            Eigen::RowVector3d mirrored = rest;
+            mirrored.x() = -mirrored.x();
+            const double own = (placement->row(v) - rest).norm();
+            EXPECT_LT(own, 0.5 * (placement->row(v) - mirrored).norm()) << v;
+        }
+    }
+    EXPECT_GT(legs, 10);
+    EXPECT_FALSE(detail::exchanged_placement(
+                     figure.template_mesh, figure.from, figure.to,
+                     detail::find_swapped_limbs(figure.from, figure.to, figure.placed(false), 0))
+                     .has_value());
 }
 
 TEST(SwappedLimbs, RefusesPlacementsOfAnotherSize) {

@@ -290,6 +290,10 @@ struct MatchOptions {
     /// result is drawn towards the map of the exchanged extremities and matched again by the
     /// guided rounds, and kept if its own functions agree clearly better
     /// (MatchResult::swapped_limbs). Needs the second opinion (its analyses of the shapes).
+    /// The refined level (refinement_guidances) is checked the same way after its fits to the
+    /// fine map, and flowed again from the exchanged places: a limb the coarsest level turned
+    /// onto another's place about its joint (the articulated prior) keeps the surface's
+    /// orientation, and the fits reflect it into a place the turning functions tell.
     bool swap_limbs = true;
     RigidAlignmentOptions alignment;
     /// Penalties of the quasi-rigid prior.
@@ -352,8 +356,9 @@ struct MatchResult {
     /// the second opinion's; 0 = none).
     int alternative_starts = 0;
     int alternative_start = 0;
-    /// How many pairs of limbs MatchOptions::swap_limbs exchanged (0 if its match was not kept,
-    /// or none was tried). The other fields say where the result it started from came from.
+    /// How many pairs of limbs MatchOptions::swap_limbs exchanged, at the coarsest and the
+    /// refined level (0 if no match from the exchanges was kept, or none was tried). The other
+    /// fields say where the coarsest result it started from came from.
     int swapped_limbs = 0;
     /// How far the coarsest level's result disagrees with the target intrinsically (the
     /// median heat-kernel-signature discrepancy of where its vertices landed, over the
