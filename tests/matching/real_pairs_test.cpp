@@ -258,14 +258,19 @@ TEST(RealPairs, KneelingManFromAnotherPoseGetsAnAlternativeStart) {
     EXPECT_LT(error.mean, 0.07);
 }
 
+// The libigl elephant from its frame 100 to its frame 300, as docs/eval/posed_templates.json.
+std::optional<SimplifiedPair> elephant_pair() {
+    return simplified_pair("rigs/libigl_elephant/elephant_frame100.ply",
+                           "rigs/libigl_elephant/elephant_frame300.ply");
+}
+
 // The libigl elephant from its frame 100 to its frame 300 (docs/eval/posed_templates.json):
 // the template's stride puts each leg nearest the other's place, and without the check for
 // swapped limbs both pairs of legs are matched exchanged (7.7 % mean error in docs/eval, not
 // doubtful); exchanging them back makes the turning functions agree and the match right
 // (MatchOptions::swap_limbs). About 20 seconds.
 TEST(RealPairs, ElephantsLegsAreExchangedBack) {
-    const std::optional<SimplifiedPair> pair = simplified_pair(
-        "rigs/libigl_elephant/elephant_frame100.ply", "rigs/libigl_elephant/elephant_frame300.ply");
+    const std::optional<SimplifiedPair> pair = elephant_pair();
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl elephant in it";
     }
@@ -291,8 +296,7 @@ TEST(RealPairs, ElephantsLegsAreExchangedBack) {
 // check does (0.18), and that level flowed again from the exchanged places is right (7.8 %
 // mean error in docs/eval without it). About 35 seconds.
 TEST(RealPairs, ArticulatedElephantsLimbsAreExchangedBackAtTheRefinedLevel) {
-    const std::optional<SimplifiedPair> pair = simplified_pair(
-        "rigs/libigl_elephant/elephant_frame100.ply", "rigs/libigl_elephant/elephant_frame300.ply");
+    const std::optional<SimplifiedPair> pair = elephant_pair();
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl elephant in it";
     }
