@@ -167,6 +167,7 @@ void run_eval(const EvalOptions& options) {
                 {"second_opinion", result.second_opinion},
                 {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
                 {"alternative_start", result.alternative_start},
+                {"signature_fallback", result.signature_fallback},
                 {"swapped_limbs", result.swapped_limbs},
                 {"map_fits", result.map_fits},
                 {"seconds", result.seconds}};

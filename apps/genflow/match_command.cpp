@@ -35,6 +35,7 @@ struct MatchCommandOptions {
     bool no_align = false;
     bool no_turn_back = false;
     bool no_limb_swaps = false;
+    bool no_signature_fallback = false;
     bool json = false;
     bool quiet = false;
 };
@@ -106,6 +107,7 @@ void run_match(const MatchCommandOptions& options) {
     job.options.align = !options.no_align;
     job.options.turn_back_parts = !options.no_turn_back;
     job.options.swap_limbs = !options.no_limb_swaps;
+    job.options.signature_fallback = !options.no_signature_fallback;
     job.progress_bar = !options.json && !options.quiet;
     const nlohmann::json summary = run_match_job(std::move(job));
     if (summary["doubtful"].get<bool>()) {
@@ -281,6 +283,9 @@ void register_match_command(CLI::App& app) {
                       "Do not check whether the match put two limbs on each other's places (a "
                       "left leg on the right one) by which way the extremities lie, nor match "
                       "again with them exchanged");
+    command->add_flag("--no-signature-fallback", options->no_signature_fallback,
+                      "Do not run a doubtful last coarsest round again guided by the heat kernel "
+                      "signatures alone, whose result is kept if it disagrees less");
     command->add_flag("--no-turn-back", options->no_turn_back,
                       "Do not turn back the parts that a fine functional map (60 eigenfunctions) "
                       "places turned over in their own place (a hand palm for back) after the "

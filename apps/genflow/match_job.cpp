@@ -64,6 +64,7 @@ nlohmann::json run_match_job(MatchJob job) {
         {"pseudo_hausdorff", result.hausdorff_energy},
         {"stretch_weight", result.stretch_weight},
         {"eigenfunction_guidance", result.eigenfunction_guidance},
+        {"signature_fallback", result.signature_fallback},
         {"refinement_guidance", result.refinement_guidance},
         {"turned_parts", result.turned_parts},
         {"map_fits", result.map_fits},

@@ -493,106 +493,128 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             double stretch_weight = 0;
             double eigenfunction_guidance = 0;
             double disagreement = 0;
+            bool signatures_alone = false;  // MatchOptions::signature_fallback kept
         };
         // `intrinsic_placement`: that of the intrinsic start s, if s is one (a second opinion).
         // `start_at`: where the flows start, if not at start s's rigid placement.
-        const auto guided_match = [&](std::size_t s, bool reports,
-                                      const Eigen::MatrixX3d* intrinsic_placement = nullptr,
-                                      const TriangleMesh* start_at = nullptr) {
-            const TriangleMesh start_mesh = start_at != nullptr ? *start_at : placed(starts[s]);
-            // The guided flow, then the plain one; the result counts the steps of both.
-            const auto guided_then_plain = [&](const PointDescriptors& descriptors,
-                                               double stretch_weight, bool reporting) {
-                FlowResult guided_flow =
-                    flow_level(count - 1, start_mesh, options.max_iterations, starts[s],
-                               options.prior, descriptors, stretch_weight, reporting);
-                if (cancelled) {
-                    return guided_flow;
-                }
-                FlowResult plain =
-                    flow_level(count - 1, guided_flow.mesh, options.max_iterations, starts[s],
-                               options.prior, {}, stretch_weight, reporting);
-                plain.steps += guided_flow.steps;
-                return plain;
-            };
-            // The last round, at each stiffness of MatchOptions::stiffness_candidates and with
-            // each of `guidances` (descriptors and their weight), side by side: the stiffer ones
-            // settle at stretch_weight after their plain flow; the result that disagrees least
-            // with the target intrinsically is kept.
-            const auto last_round =
-                [&](const std::vector<std::pair<PointDescriptors, double>>& guidances,
-                    int first_steps) {
-                    const auto stiffnesses = static_cast<std::size_t>(
-                        options.stretch_weight > 0 ? options.stiffness_candidates : 1);
-                    std::vector<FlowResult> flows(stiffnesses * guidances.size());
-                    const auto weight = [&](std::size_t t) {
-                        return options.stretch_weight *
-                               std::pow(4.0, static_cast<double>(t % stiffnesses));
-                    };
-                    run_side_by_side(flows.size(), [&](std::size_t t) {
-                        flows[t] = guided_then_plain(guidances[t / stiffnesses].first, weight(t),
-                                                     reports && t == 0);
-                        if (t % stiffnesses > 0 && !cancelled) {
-                            FlowResult settled = flow_level(
-                                count - 1, flows[t].mesh, options.max_iterations, starts[s],
-                                options.prior, {}, options.stretch_weight, false);
-                            settled.steps += flows[t].steps;
-                            flows[t] = std::move(settled);
-                        }
-                    });
-                    const KeptFlow kept =
-                        keep_lowest(flows, cancelled, [&](const FlowResult& flow) {
-                            return disagreement(*spectral, flow.mesh.V);
-                        });
-                    GuidedMatch outcome;
-                    outcome.flow = std::move(flows[kept.index]);
-                    outcome.flow.steps = first_steps + kept.steps;
-                    outcome.stretch_weight = weight(kept.index);
-                    outcome.eigenfunction_guidance = guidances[kept.index / stiffnesses].second;
-                    outcome.disagreement = kept.rating;
-                    return outcome;
+        // `signatures_alone`: the last round guided by the signatures only, as the
+        // signature_fallback's (for a match again from a result that came from it).
+        const auto guided_match =
+            [&](std::size_t s, bool reports, const Eigen::MatrixX3d* intrinsic_placement = nullptr,
+                const TriangleMesh* start_at = nullptr, bool signatures_alone = false) {
+                const TriangleMesh start_mesh = start_at != nullptr ? *start_at : placed(starts[s]);
+                // The guided flow, then the plain one; the result counts the steps of both.
+                const auto guided_then_plain = [&](const PointDescriptors& descriptors,
+                                                   double stretch_weight, bool reporting) {
+                    FlowResult guided_flow =
+                        flow_level(count - 1, start_mesh, options.max_iterations, starts[s],
+                                   options.prior, descriptors, stretch_weight, reporting);
+                    if (cancelled) {
+                        return guided_flow;
+                    }
+                    FlowResult plain =
+                        flow_level(count - 1, guided_flow.mesh, options.max_iterations, starts[s],
+                                   options.prior, {}, stretch_weight, reporting);
+                    plain.steps += guided_flow.steps;
+                    return plain;
                 };
-            // The stretching energy joins the last round only: the first one serves to estimate
-            // the functional map, which it made worse (MatchOptions::stretch_weight).
-            GuidedMatch outcome;
-            if (options.eigenfunction_guidance > 0) {
-                const FlowResult first = guided_then_plain(signature_descriptors, 0, reports);
-                if (cancelled) {
-                    outcome.flow = first;
+                // The last round, at each stiffness of MatchOptions::stiffness_candidates and with
+                // each of `guidances` (descriptors and their weight), side by side: the stiffer
+                // ones settle at stretch_weight after their plain flow; the result that disagrees
+                // least with the target intrinsically is kept.
+                const auto last_round =
+                    [&](const std::vector<std::pair<PointDescriptors, double>>& guidances,
+                        int first_steps) {
+                        const auto stiffnesses = static_cast<std::size_t>(
+                            options.stretch_weight > 0 ? options.stiffness_candidates : 1);
+                        std::vector<FlowResult> flows(stiffnesses * guidances.size());
+                        const auto weight = [&](std::size_t t) {
+                            return options.stretch_weight *
+                                   std::pow(4.0, static_cast<double>(t % stiffnesses));
+                        };
+                        run_side_by_side(flows.size(), [&](std::size_t t) {
+                            flows[t] = guided_then_plain(guidances[t / stiffnesses].first,
+                                                         weight(t), reports && t == 0);
+                            if (t % stiffnesses > 0 && !cancelled) {
+                                FlowResult settled = flow_level(
+                                    count - 1, flows[t].mesh, options.max_iterations, starts[s],
+                                    options.prior, {}, options.stretch_weight, false);
+                                settled.steps += flows[t].steps;
+                                flows[t] = std::move(settled);
+                            }
+                        });
+                        const KeptFlow kept =
+                            keep_lowest(flows, cancelled, [&](const FlowResult& flow) {
+                                return disagreement(*spectral, flow.mesh.V);
+                            });
+                        GuidedMatch outcome;
+                        outcome.flow = std::move(flows[kept.index]);
+                        outcome.flow.steps = first_steps + kept.steps;
+                        outcome.stretch_weight = weight(kept.index);
+                        outcome.eigenfunction_guidance = guidances[kept.index / stiffnesses].second;
+                        outcome.disagreement = kept.rating;
+                        return outcome;
+                    };
+                // The stretching energy joins the last round only: the first one serves to estimate
+                // the functional map, which it made worse (MatchOptions::stretch_weight).
+                GuidedMatch outcome;
+                if (signatures_alone) {
+                    outcome = last_round({{signature_descriptors, 0.0}}, 0);
+                    outcome.signatures_alone = true;
+                } else if (options.eigenfunction_guidance > 0) {
+                    const FlowResult first = guided_then_plain(signature_descriptors, 0, reports);
+                    if (cancelled) {
+                        outcome.flow = first;
+                    } else {
+                        // The descriptors' spread is their weight: the map is estimated once and
+                        // the stronger guidances are its descriptors scaled (2^j, exactly).
+                        // The map is estimated from this match and from the start's selection
+                        // flow; SpectralDescriptors keeps the best of the maps ZoomOut finds.
+                        std::vector<Eigen::MatrixX3d> placements{first.mesh.V};
+                        if (s < selection_flows.size()) {
+                            placements.push_back(selection_flows[s].mesh.V);
+                        }
+                        if (intrinsic_placement != nullptr) {
+                            placements.push_back(*intrinsic_placement);
+                        }
+                        const PointDescriptors descriptors = spectral->eigenfunction_descriptors(
+                            placements, coarsest.template_mesh.V, coarsest.target.V,
+                            options.eigenfunction_guidance * diagonal);
+                        std::vector<std::pair<PointDescriptors, double>> guidances;
+                        for (int j = 0; j < options.guidance_candidates; ++j) {
+                            const double factor = 1 << j;
+                            guidances.emplace_back(PointDescriptors{factor * descriptors.moving,
+                                                                    factor * descriptors.fixed},
+                                                   factor * options.eigenfunction_guidance);
+                        }
+                        outcome = last_round(guidances, first.steps);
+                        // The eigenfunctions are only as right as the map that carried them: one
+                        // fitted to a poor first match can fold a part onto itself (TOSCA michael
+                        // kneeling to standing: his torso front to back, which d_H and the edges'
+                        // lengths do not mind). A doubtful round runs again guided by the
+                        // signatures alone, which replaces it if it disagrees less. They cannot
+                        // tell left from right; the check for swapped limbs that follows can.
+                        if (options.signature_fallback && !cancelled &&
+                            outcome.disagreement > kDoubtfulDisagreement) {
+                            GuidedMatch fallback = last_round({{signature_descriptors, 0.0}}, 0);
+                            const int steps = outcome.flow.steps + fallback.flow.steps;
+                            if (!cancelled && fallback.disagreement < outcome.disagreement) {
+                                outcome = std::move(fallback);
+                                outcome.signatures_alone = true;
+                            }
+                            outcome.flow.steps = steps;
+                        }
+                    }
                 } else {
-                    // The descriptors' spread is their weight: the map is estimated once and
-                    // the stronger guidances are its descriptors scaled (2^j, exactly).
-                    // The map is estimated from this match and from the start's selection
-                    // flow; SpectralDescriptors keeps the best of the maps ZoomOut finds.
-                    std::vector<Eigen::MatrixX3d> placements{first.mesh.V};
-                    if (s < selection_flows.size()) {
-                        placements.push_back(selection_flows[s].mesh.V);
-                    }
-                    if (intrinsic_placement != nullptr) {
-                        placements.push_back(*intrinsic_placement);
-                    }
-                    const PointDescriptors descriptors = spectral->eigenfunction_descriptors(
-                        placements, coarsest.template_mesh.V, coarsest.target.V,
-                        options.eigenfunction_guidance * diagonal);
-                    std::vector<std::pair<PointDescriptors, double>> guidances;
-                    for (int j = 0; j < options.guidance_candidates; ++j) {
-                        const double factor = 1 << j;
-                        guidances.emplace_back(PointDescriptors{factor * descriptors.moving,
-                                                                factor * descriptors.fixed},
-                                               factor * options.eigenfunction_guidance);
-                    }
-                    outcome = last_round(guidances, first.steps);
+                    outcome = last_round({{signature_descriptors, 0.0}}, 0);
                 }
-            } else {
-                outcome = last_round({{signature_descriptors, 0.0}}, 0);
-            }
-            // The level reports the plain d_H, from the rigid start on.
-            const PseudoHausdorffEnergy plain_distance = distance_to_target(coarsest, 1, {});
-            outcome.flow.energy.insert(outcome.flow.energy.begin(),
-                                       plain_distance.value(start_mesh));
-            outcome.flow.energy.back() = plain_distance.value(outcome.flow.mesh);
-            return outcome;
-        };
+                // The level reports the plain d_H, from the rigid start on.
+                const PseudoHausdorffEnergy plain_distance = distance_to_target(coarsest, 1, {});
+                outcome.flow.energy.insert(outcome.flow.energy.begin(),
+                                           plain_distance.value(start_mesh));
+                outcome.flow.energy.back() = plain_distance.value(outcome.flow.mesh);
+                return outcome;
+            };
         // The second opinion joins the contenders from the intrinsic start; none without an
         // eigenbasis or landmarks (the first opinion then stands). Returns whether it joined.
         // The intrinsic starts of the next landmark sets wait for a doubtful result.
@@ -696,7 +718,8 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 drawn.V = detail::fitted_to_map(matched, *exchanged, kMapFitLength * diagonal);
                 starts.push_back(starts[contenders[kept]]);
                 contenders.push_back(starts.size() - 1);
-                outcomes.push_back(guided_match(contenders.back(), true, &*exchanged, &drawn));
+                outcomes.push_back(guided_match(contenders.back(), true, &*exchanged, &drawn,
+                                                outcomes[kept].signatures_alone));
                 const detail::LimbPlacement rematched = detail::place_limbs(
                     from, to, outcomes.back().flow.mesh.V(from.coarse.fine_vertex, Eigen::all));
                 if (!cancelled &&
@@ -719,6 +742,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         best.steps = steps;
         result.stretch_weight = outcomes[kept].stretch_weight;
         result.eigenfunction_guidance = outcomes[kept].eigenfunction_guidance;
+        result.signature_fallback = outcomes[kept].signatures_alone;
     } else if (!several_starts || options.prior != MatchPrior::H1) {
         best = flow_level(count - 1, placed(starts[chosen]), options.max_iterations, starts[chosen],
                           options.prior);

@@ -57,6 +57,7 @@ TEST(EvalCli, MatchesAPairAgainstItsRemeshedTarget) {
     EXPECT_EQ(rows[0]["second_opinion"], false);
     EXPECT_TRUE(rows[0]["second_opinion_disagreement"].is_null());  // the rigid prior asks none
     EXPECT_EQ(rows[0]["swapped_limbs"], 0);
+    EXPECT_EQ(rows[0]["signature_fallback"], false);
 }
 
 TEST(EvalCli, MatchesAPairAgainstItsGroundTruthSimplified) {

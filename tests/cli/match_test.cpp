@@ -53,6 +53,7 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(json["second_opinion"], false);
     EXPECT_TRUE(json["second_opinion_disagreement"].is_null());  // the rigid prior asks none
     EXPECT_EQ(json["swapped_limbs"], 0);                         // nor checks for swapped limbs
+    EXPECT_EQ(json["signature_fallback"], false);                // nor has a guided round
     EXPECT_LT(json["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.02);
     EXPECT_EQ(json["stranded_vertices"], 0);
     EXPECT_TRUE(json["stranded_vertex_indices"].empty());
@@ -79,6 +80,7 @@ TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
     const auto result = run_genflow(
         command +
         " --rigidity-length 0.3 --fake-edges 20 --implicit --no-turn-back --no-limb-swaps"
+        " --no-signature-fallback"
         " --map-fits 0 --json");
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto json = nlohmann::json::parse(result.out);

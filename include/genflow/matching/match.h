@@ -180,6 +180,17 @@ struct MatchOptions {
     /// 2.30 → 2.83 %, the horse's Hausdorff 0.96 → 3.09 % (a fold at an ear, kept on a near
     /// tie: 0.1704 against 0.1707) and the body's 0.78 → 1.91 %, at 1.5–6 s more.
     int guidance_candidates = 1;
+    /// The eigenfunctions are carried over by a map fitted to the signature-guided match, and
+    /// where that match was poor they can guide a part onto itself back to front: TOSCA
+    /// michael kneeling to standing (h1) ended with his torso's front on its back, which
+    /// neither d_H nor the edges' lengths see (a reflection keeps both). A last round whose
+    /// result is doubtful (disagreement above kDoubtfulDisagreement) runs again, at every
+    /// stiffness, guided by the signatures alone, and that result is kept if it disagrees less
+    /// (MatchResult::signature_fallback). The signatures cannot tell left from right; the
+    /// check for swapped limbs that follows (swap_limbs) can, and matches again from the
+    /// exchanged places with the signatures alone too. Only where
+    /// eigenfunction_guidance > 0; results that are not doubtful are unchanged.
+    bool signature_fallback = true;
     /// The last guided round (the eigenfunctions', else the signatures') flows on d_H plus
     /// stretch_weight × the target's diagonal × the EdgeLengthEnergy of the coarsest template
     /// level at its rigid start: d_H cannot see where along the target's surface a point lands,
@@ -340,6 +351,9 @@ struct MatchResult {
     /// The eigenfunction guidance of the kept last round (MatchOptions::guidance_candidates);
     /// 0 without it.
     double eigenfunction_guidance = 0;
+    /// Whether the kept last round was guided by the signatures alone
+    /// (MatchOptions::signature_fallback); its eigenfunction_guidance is then 0.
+    bool signature_fallback = false;
     /// The eigenfunction guidance of the kept refining flow of the second coarsest level
     /// (MatchOptions::refinement_guidances); 0 when its plain flow was kept or none ran.
     double refinement_guidance = 0;
