@@ -558,10 +558,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 // The stretching energy joins the last round only: the first one serves to estimate
                 // the functional map, which it made worse (MatchOptions::stretch_weight).
                 GuidedMatch outcome;
-                if (signatures_alone) {
-                    outcome = last_round({{signature_descriptors, 0.0}}, 0);
-                    outcome.signatures_alone = true;
-                } else if (options.eigenfunction_guidance > 0) {
+                if (!signatures_alone && options.eigenfunction_guidance > 0) {
                     const FlowResult first = guided_then_plain(signature_descriptors, 0, reports);
                     if (cancelled) {
                         outcome.flow = first;
@@ -607,6 +604,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                     }
                 } else {
                     outcome = last_round({{signature_descriptors, 0.0}}, 0);
+                    outcome.signatures_alone = signatures_alone;
                 }
                 // The level reports the plain d_H, from the rigid start on.
                 const PseudoHausdorffEnergy plain_distance = distance_to_target(coarsest, 1, {});
