@@ -5,7 +5,8 @@
 // 28K-vertex TOSCA cat and the 13K-vertex MakeHuman body against their remeshed targets. Each
 // reports the mean correspondence error over the target's bounding-box diagonal, so that a
 // faster setting that matches worse shows in the same table. Also the time of the evaluation
-// (correspondence_error()) of a match gone wrong.
+// (correspondence_error()) of a match gone wrong, and of the embedding of a level in the next
+// coarser one, along the surface and in the closest face of all.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>
@@ -22,6 +23,7 @@
 #include "genflow/io/read_mesh.h"
 #include "genflow/matching/correspondence_error.h"
 #include "genflow/matching/match.h"
+#include "genflow/matching/multiresolution.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/operators/mesh_size.h"
 #include "matching/intrinsic_start.h"
@@ -138,8 +140,38 @@ void BM_IntrinsicStartTOSCAMichaelKneeling(benchmark::State& state) {
               : -1;
 }
 
+// A pyramid level's embedding in the next coarser one: the generated limb at 40962 vertices,
+// coarsened 4×, as match() builds its pyramid (embed() along the surface), and the closest face
+// of all for comparison.
+const std::pair<genflow::TriangleMesh, genflow::CoarseMesh>& limb_level() {
+    static const std::pair<genflow::TriangleMesh, genflow::CoarseMesh> level = [] {
+        genflow::TriangleMesh fine = genflow::make_limb(6);
+        genflow::CoarseMesh coarse = genflow::coarsen(fine, fine.V.rows() / 4);
+        return std::pair{std::move(fine), std::move(coarse)};
+    }();
+    return level;
+}
+
+void BM_EmbedLevelAlongTheSurface(benchmark::State& state) {
+    const auto& [fine, coarse] = limb_level();
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(genflow::embed(fine, coarse));
+    }
+    state.counters["vertices"] = static_cast<double>(fine.V.rows());
+}
+
+void BM_EmbedLevelInTheClosestFace(benchmark::State& state) {
+    const auto& [fine, coarse] = limb_level();
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(genflow::embed(fine, coarse.mesh));
+    }
+    state.counters["vertices"] = static_cast<double>(fine.V.rows());
+}
+
 }  // namespace
 
+BENCHMARK(BM_EmbedLevelAlongTheSurface)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmbedLevelInTheClosestFace)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IntrinsicStartTOSCAMichaelKneeling)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_CorrespondenceErrorOfAMatchGoneWrong)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_MatchGeneratedLimb)->Unit(benchmark::kMillisecond)->Iterations(1);

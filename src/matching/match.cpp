@@ -198,6 +198,7 @@ std::vector<Level> build_pyramid(const TriangleMesh& template_mesh, const Triang
         const Eigen::Index size = std::max<Eigen::Index>(finer.template_mesh.V.rows() / 4, 100);
         Level coarser;
         CoarseMesh coarse = coarsen(finer.template_mesh, size);
+        levels.back().embedding = embed(finer.template_mesh, coarse);
         coarser.template_mesh = std::move(coarse.mesh);
         for (const Eigen::Index v : coarse.fine_vertex) {
             coarser.original_vertex.push_back(finer.original_vertex[static_cast<std::size_t>(v)]);
@@ -210,7 +211,6 @@ std::vector<Level> build_pyramid(const TriangleMesh& template_mesh, const Triang
                 std::max<Eigen::Index>(
                     static_cast<Eigen::Index>(ratio * static_cast<double>(target.V.rows())), 100))
                 .mesh;
-        levels.back().embedding = embed(finer.template_mesh, coarser.template_mesh);
         levels.push_back(std::move(coarser));
     }
     return levels;

@@ -11,12 +11,14 @@
 #include <string>
 
 #include "genflow/exceptions.h"
+#include "genflow/mesh/edges.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/operators/normals.h"
 #include "genflow/spatial/closest_point.h"
 #include "numerics/nearest_orthogonal.h"
 #include "operators/triangle.h"
 #include "spatial/point_index.h"
+#include "spatial/surface_paths.h"
 
 namespace genflow {
 
@@ -86,55 +88,222 @@ CoarseMesh coarsen(const TriangleMesh& mesh, Eigen::Index target_vertices) {
     return coarse;
 }
 
+namespace {
+
+// The coarse mesh's faces as candidates for a fine vertex's embedding.
+class CoarseFaces {
+public:
+    explicit CoarseFaces(const TriangleMesh& coarse)
+        : coarse_(coarse),
+          normals_(face_normals(coarse)),
+          faces_at_(static_cast<std::size_t>(coarse.V.rows())) {
+        for (Eigen::Index f = 0; f < coarse.F.rows(); ++f) {
+            for (int c = 0; c < 3; ++c) {
+                faces_at_[static_cast<std::size_t>(coarse.F(f, c))].push_back(static_cast<int>(f));
+            }
+        }
+    }
+
+    [[nodiscard]] const std::vector<int>& faces_at(Eigen::Index vertex) const {
+        return faces_at_[static_cast<std::size_t>(vertex)];
+    }
+
+    [[nodiscard]] bool faces_along(Eigen::Index face, const Eigen::Vector3d& normal) const {
+        return normals_.row(face).dot(normal) > 0;
+    }
+
+    // The point of `faces` nearest to p, among those facing along `normal` only if
+    // `facing_only`; face −1 if there is none.
+    [[nodiscard]] SurfacePoint closest(const Eigen::Vector3d& p, const Eigen::Vector3d& normal,
+                                       const std::vector<int>& faces, bool facing_only) const {
+        SurfacePoint best;
+        best.distance = std::numeric_limits<double>::infinity();
+        for (const int f : faces) {
+            if (facing_only && !faces_along(f, normal)) {
+                continue;
+            }
+            const Eigen::Vector3d w =
+                closest_point_on_triangle(p, corner(f, 0), corner(f, 1), corner(f, 2));
+            const Eigen::Vector3d q =
+                w[0] * corner(f, 0) + w[1] * corner(f, 1) + w[2] * corner(f, 2);
+            if ((q - p).norm() < best.distance) {
+                best = {f, w, q, (q - p).norm()};
+            }
+        }
+        return best;
+    }
+
+private:
+    [[nodiscard]] Eigen::Vector3d corner(Eigen::Index f, int c) const {
+        return coarse_.V.row(coarse_.F(f, c)).transpose();
+    }
+
+    const TriangleMesh& coarse_;
+    Eigen::MatrixX3d normals_;
+    std::vector<std::vector<int>> faces_at_;
+};
+
+void set_row(Embedding& embedding, Eigen::Index i, const Eigen::Vector3d& p,
+             const SurfacePoint& at) {
+    embedding.face[i] = static_cast<int>(at.face);
+    embedding.barycentric.row(i) = at.barycentric.transpose();
+    embedding.offset.row(i) = (p - at.point).transpose();
+}
+
+}  // namespace
+
 Embedding embed(const TriangleMesh& fine, const TriangleMesh& coarse) {
     detail::require_valid_mesh(fine, "embed");
     const TriangleBvh bvh(coarse);  // validates the coarse mesh
     const Eigen::MatrixX3d fine_normals = vertex_normals(fine);
-    const Eigen::MatrixX3d coarse_normals = face_normals(coarse);
-    // For the thin-part fallback: the faces around each coarse vertex, and a point index.
-    std::vector<std::vector<int>> faces_at(static_cast<std::size_t>(coarse.V.rows()));
-    for (Eigen::Index f = 0; f < coarse.F.rows(); ++f) {
-        for (int c = 0; c < 3; ++c) {
-            faces_at[static_cast<std::size_t>(coarse.F(f, c))].push_back(static_cast<int>(f));
-        }
-    }
+    const CoarseFaces faces(coarse);
+    // For the thin-part fallback: a point index of the coarse vertices.
     const detail::PointIndex vertices(coarse.V);
-    const auto corner = [&](Eigen::Index f, int c) -> Eigen::Vector3d {
-        return coarse.V.row(coarse.F(f, c)).transpose();
-    };
 
     const Eigen::Index n = fine.V.rows();
     Embedding e{Eigen::VectorXi(n), Eigen::MatrixX3d(n, 3), Eigen::MatrixX3d(n, 3)};
     std::vector<std::pair<std::uint32_t, double>> near;
-#pragma omp parallel for schedule(dynamic, 256) private(near)
+    std::vector<int> candidates;
+#pragma omp parallel for schedule(dynamic, 256) private(near, candidates)
     for (Eigen::Index i = 0; i < n; ++i) {
         const Eigen::Vector3d p = fine.V.row(i).transpose();
         const Eigen::Vector3d normal = fine_normals.row(i).transpose();
         SurfacePoint best = bvh.closest_point(p);
-        if (coarse_normals.row(best.face).dot(normal) <= 0 && normal.squaredNorm() > 0) {
+        if (!faces.faces_along(best.face, normal) && normal.squaredNorm() > 0) {
             // The nearest face faces away (the other side of a thin part): look among the
             // faces around the coarse vertices within a few times that distance.
             vertices.within(p, std::pow(3 * best.distance + 1e-300, 2), near);
-            double closest = std::numeric_limits<double>::infinity();
+            candidates.clear();
             for (const auto& [v, unused] : near) {
-                for (const int f : faces_at[v]) {
-                    if (coarse_normals.row(f).dot(normal) <= 0) {
-                        continue;
-                    }
-                    const Eigen::Vector3d w =
-                        closest_point_on_triangle(p, corner(f, 0), corner(f, 1), corner(f, 2));
-                    const Eigen::Vector3d q =
-                        w[0] * corner(f, 0) + w[1] * corner(f, 1) + w[2] * corner(f, 2);
-                    if ((q - p).norm() < closest) {
-                        closest = (q - p).norm();
-                        best = {f, w, q, closest};
+                const std::vector<int>& around = faces.faces_at(v);
+                candidates.insert(candidates.end(), around.begin(), around.end());
+            }
+            const SurfacePoint facing = faces.closest(p, normal, candidates, true);
+            if (facing.face >= 0) {
+                best = facing;
+            }
+        }
+        set_row(e, i, p, best);
+    }
+    return e;
+}
+
+// How many coarse rings beyond the nearest coarse vertices the candidate faces reach: with one,
+// 4 of the 2562 vertices of the generated limb missed their closest face (QEM leaves long
+// triangles), with two none.
+constexpr int kCoarseRings = 2;
+
+Embedding embed(const TriangleMesh& fine, const CoarseMesh& coarse) {
+    detail::require_valid_mesh(fine, "embed");
+    detail::require_valid_mesh(coarse.mesh, "embed");
+    if (coarse.mesh.F.rows() == 0) {
+        throw InvalidInput("embed: the coarse mesh has no faces");
+    }
+    if (static_cast<Eigen::Index>(coarse.fine_vertex.size()) != coarse.mesh.V.rows() ||
+        std::any_of(coarse.fine_vertex.begin(), coarse.fine_vertex.end(),
+                    [&](Eigen::Index v) { return v < 0 || v >= fine.V.rows(); })) {
+        throw InvalidInput(
+            "embed: the coarse mesh's fine_vertex does not name a fine vertex "
+            "for each coarse vertex");
+    }
+    // Which coarse vertex each fine one is nearest to along the fine surface: a hand resting on
+    // a thigh is near the thigh in space, not along the surface.
+    const detail::ChordGraph edges = detail::chord_graph(fine, 1);
+    const std::vector<Eigen::Index> nearest = detail::nearest_sources(edges, coarse.fine_vertex);
+    // Per coarse vertex, the coarse vertices within kCoarseRings of it (itself included), sorted.
+    const std::vector<std::vector<Eigen::Index>> coarse_ring =
+        vertex_neighbours(coarse.mesh.F, coarse.mesh.V.rows());
+    std::vector<std::vector<Eigen::Index>> reach(coarse_ring.size());
+    for (std::size_t c = 0; c < reach.size(); ++c) {
+        std::vector<Eigen::Index>& within = reach[c];
+        within.push_back(static_cast<Eigen::Index>(c));
+        for (int r = 0; r < kCoarseRings; ++r) {
+            const std::size_t inner = within.size();
+            for (std::size_t k = 0; k < inner; ++k) {
+                const auto& ring = coarse_ring[static_cast<std::size_t>(within[k])];
+                within.insert(within.end(), ring.begin(), ring.end());
+            }
+            std::sort(within.begin(), within.end());
+            within.erase(std::unique(within.begin(), within.end()), within.end());
+        }
+    }
+    const TriangleBvh bvh(coarse.mesh);
+    const Eigen::MatrixX3d fine_normals = vertex_normals(fine);
+    const CoarseFaces faces(coarse.mesh);
+
+    const Eigen::Index n = fine.V.rows();
+    Embedding e{Eigen::VectorXi(n), Eigen::MatrixX3d(n, 3), Eigen::MatrixX3d(n, 3)};
+    std::vector<Eigen::Index> labels;
+    std::vector<int> candidates;
+    std::vector<char> placed(static_cast<std::size_t>(n), 0);
+#pragma omp parallel for schedule(dynamic, 256) private(labels, candidates)
+    for (Eigen::Index i = 0; i < n; ++i) {
+        // The coarse vertices nearest to i and to its neighbours: the faces around them and
+        // kCoarseRings further are every face of the surface near i, and none across a gap.
+        labels.clear();
+        labels.push_back(nearest[static_cast<std::size_t>(i)]);
+        for (const detail::Chord& chord : edges[static_cast<std::size_t>(i)]) {
+            labels.push_back(nearest[static_cast<std::size_t>(chord.vertex)]);
+        }
+        std::sort(labels.begin(), labels.end());
+        labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+        if (labels.front() < 0) {
+            continue;  // on a component without coarse vertices
+        }
+        const Eigen::Vector3d p = fine.V.row(i).transpose();
+        const Eigen::Vector3d normal = fine_normals.row(i).transpose();
+        const auto facing_right = [&](Eigen::Index f) {
+            return faces.faces_along(f, normal) || normal.squaredNorm() == 0;
+        };
+
+        // Mostly the closest face of all is one of them, and facing the right way.
+        SurfacePoint best = bvh.closest_point(p);
+        const auto is_near = [&](Eigen::Index f) {
+            for (const Eigen::Index label : labels) {
+                const std::vector<Eigen::Index>& within = reach[static_cast<std::size_t>(label)];
+                for (int c = 0; c < 3; ++c) {
+                    if (std::binary_search(within.begin(), within.end(),
+                                           Eigen::Index{coarse.mesh.F(f, c)})) {
+                        return true;
                     }
                 }
             }
+            return false;
+        };
+        if (!is_near(best.face) || !facing_right(best.face)) {
+            candidates.clear();
+            for (const Eigen::Index label : labels) {
+                for (const Eigen::Index v : reach[static_cast<std::size_t>(label)]) {
+                    const std::vector<int>& at = faces.faces_at(v);
+                    candidates.insert(candidates.end(), at.begin(), at.end());
+                }
+            }
+            std::sort(candidates.begin(), candidates.end());
+            candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+            if (candidates.empty()) {
+                continue;  // near coarse vertices on no face
+            }
+            best = faces.closest(p, normal, candidates, false);
+            if (!facing_right(best.face)) {
+                // The nearest face faces away (the other side of a thin part).
+                const SurfacePoint facing = faces.closest(p, normal, candidates, true);
+                if (facing.face >= 0) {
+                    best = facing;
+                }
+            }
         }
-        e.face[i] = static_cast<int>(best.face);
-        e.barycentric.row(i) = best.barycentric.transpose();
-        e.offset.row(i) = (p - best.point).transpose();
+        set_row(e, i, p, best);
+        placed[static_cast<std::size_t>(i)] = 1;
+    }
+    if (std::find(placed.begin(), placed.end(), 0) != placed.end()) {
+        const Embedding anywhere = embed(fine, coarse.mesh);
+        for (Eigen::Index i = 0; i < n; ++i) {
+            if (placed[static_cast<std::size_t>(i)] == 0) {
+                e.face[i] = anywhere.face[i];
+                e.barycentric.row(i) = anywhere.barycentric.row(i);
+                e.offset.row(i) = anywhere.offset.row(i);
+            }
+        }
     }
     return e;
 }

@@ -58,4 +58,36 @@ Eigen::VectorXd path_lengths_from(const ChordGraph& graph, Eigen::Index source) 
     return distance;
 }
 
+std::vector<Eigen::Index> nearest_sources(const ChordGraph& graph,
+                                          const std::vector<Eigen::Index>& sources) {
+    std::vector<double> distance(graph.size(), kUnreachable);
+    std::vector<Eigen::Index> nearest(graph.size(), -1);
+    using Entry = std::pair<double, Eigen::Index>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+    for (std::size_t s = 0; s < sources.size(); ++s) {
+        const auto v = static_cast<std::size_t>(sources[s]);
+        if (nearest[v] < 0) {
+            distance[v] = 0;
+            nearest[v] = static_cast<Eigen::Index>(s);
+            queue.emplace(0.0, sources[s]);
+        }
+    }
+    while (!queue.empty()) {
+        const auto [d, v] = queue.top();
+        queue.pop();
+        if (d > distance[static_cast<std::size_t>(v)]) {
+            continue;
+        }
+        for (const Chord& chord : graph[static_cast<std::size_t>(v)]) {
+            const auto w = static_cast<std::size_t>(chord.vertex);
+            if (d + chord.length < distance[w]) {
+                distance[w] = d + chord.length;
+                nearest[w] = nearest[static_cast<std::size_t>(v)];
+                queue.emplace(d + chord.length, chord.vertex);
+            }
+        }
+    }
+    return nearest;
+}
+
 }  // namespace genflow::detail

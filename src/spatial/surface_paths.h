@@ -31,4 +31,10 @@ inline constexpr double kUnreachable = std::numeric_limits<double>::infinity();
 /// kUnreachable on other components.
 [[nodiscard]] Eigen::VectorXd path_lengths_from(const ChordGraph& graph, Eigen::Index source);
 
+/// Per vertex, the position in `sources` of the source nearest along the chord paths (one
+/// Dijkstra from all of them at once; ties go to the earlier source), or -1 on components
+/// without a source. Sources must be valid vertex indices.
+[[nodiscard]] std::vector<Eigen::Index> nearest_sources(const ChordGraph& graph,
+                                                        const std::vector<Eigen::Index>& sources);
+
 }  // namespace genflow::detail

@@ -202,6 +202,63 @@ TEST(Multiresolution, CoarseVerticesAreASubsetAndTransferIsExactForRigidMotions)
         1e-12);
 }
 
+// A ball resting on a plate, as a hand on a thigh: the ball's lowest vertices are nearer to the
+// plate than to the coarse ball's faces, which cut inside the sphere. Embedded along the
+// surface, the ball stays where it is when the plate moves away; embedded in the closest face
+// of all, its bottom would go with the plate.
+TEST(Multiresolution, TouchingPartsAreEachEmbeddedInThemselves) {
+    const TriangleMesh ball = make_icosphere(4);
+    TriangleMesh plate = make_grid(24, 6.0);
+    plate.V.rowwise() += Eigen::RowVector3d(-3, -3, -1.0005);  // 0.0005 below the ball
+    const Eigen::Index ball_vertices = ball.V.rows();
+    TriangleMesh fine{Eigen::MatrixX3d(ball.V.rows() + plate.V.rows(), 3),
+                      Eigen::MatrixX3i(ball.F.rows() + plate.F.rows(), 3)};
+    fine.V << ball.V, plate.V;
+    fine.F << ball.F, plate.F.array() + static_cast<int>(ball_vertices);
+    const CoarseMesh coarse = coarsen(fine, fine.V.rows() / 16);
+
+    // The plate's coarse vertices move 1 down; the ball's stay.
+    Eigen::MatrixX3d moved = coarse.mesh.V;
+    for (std::size_t k = 0; k < coarse.fine_vertex.size(); ++k) {
+        if (coarse.fine_vertex[k] >= ball_vertices) {
+            moved(static_cast<Eigen::Index>(k), 2) -= 1;
+        }
+    }
+    const auto ball_drift = [&](const Embedding& embedding) {
+        const TriangleMesh carried = transfer(fine, coarse.mesh, moved, embedding);
+        return (carried.V.topRows(ball_vertices) - ball.V).rowwise().norm().maxCoeff();
+    };
+    EXPECT_LT(ball_drift(embed(fine, coarse)), 1e-9);
+    EXPECT_GT(ball_drift(embed(fine, coarse.mesh)), 0.5);  // what the closest face does
+
+    // Apart, the two embeddings are the same.
+    const TriangleMesh limb = make_limb(4);
+    const CoarseMesh coarse_limb = coarsen(limb, 600);
+    const Embedding along = embed(limb, coarse_limb);
+    const Embedding closest = embed(limb, coarse_limb.mesh);
+    // The same closest points (the faces may differ where it is on an edge or a corner).
+    EXPECT_LT((along.offset - closest.offset).cwiseAbs().maxCoeff(), 1e-12);
+
+    // A component without coarse vertices is embedded in the closest faces of all.
+    TriangleMesh two_limbs{Eigen::MatrixX3d(2 * limb.V.rows(), 3),
+                           Eigen::MatrixX3i(2 * limb.F.rows(), 3)};
+    two_limbs.V << limb.V, limb.V.rowwise() + Eigen::RowVector3d(0, 0, 2);
+    two_limbs.F << limb.F, limb.F.array() + static_cast<int>(limb.V.rows());
+    const Embedding one_coarsened = embed(two_limbs, coarse_limb);
+    const Embedding anywhere = embed(two_limbs, coarse_limb.mesh);
+    EXPECT_EQ(one_coarsened.face.tail(limb.V.rows()), anywhere.face.tail(limb.V.rows()));
+    EXPECT_EQ(one_coarsened.offset.bottomRows(limb.V.rows()),
+              anywhere.offset.bottomRows(limb.V.rows()));
+    EXPECT_EQ(one_coarsened.offset.topRows(limb.V.rows()), along.offset);
+
+    CoarseMesh wrong = coarse_limb;
+    wrong.fine_vertex.pop_back();
+    EXPECT_THROW((void)embed(limb, wrong), InvalidInput);
+    wrong = coarse_limb;
+    wrong.fine_vertex.back() = limb.V.rows();
+    EXPECT_THROW((void)embed(limb, wrong), InvalidInput);
+}
+
 TEST(Multiresolution, TransferRotatesDetailsWithABend) {
     // A bend of the coarse mesh: offsets turn with the surface, so the fine mesh follows the
     // bent ground truth far better than displacement interpolation would.

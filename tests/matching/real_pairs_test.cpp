@@ -267,7 +267,11 @@ TEST(RealPairs, KneelingManFromAnotherPoseGetsAnAlternativeStart) {
 // docs/eval/posed_templates.json: the last round guided by the eigenfunctions, carried by a map
 // fitted to a poor first match, puts his torso's front on its back (4.0 % mean error,
 // doubtful); guided by the signatures alone it does not, and disagrees half as much
-// (MatchOptions::signature_fallback; 2.4 %). About a minute and a half.
+// (MatchOptions::signature_fallback; 2.4 %). His hands rest on his thighs: embedded in the
+// closest coarse face of all, the finer levels carried some of their vertices with the thighs,
+// up to 12 % of the diagonal short of the target's outstretched hands and off its surface
+// (2.4 %, 58 vertices stranded, the target's fingertips uncovered); embedded along the surface
+// (embed()), 1.0 % and none stranded. About a minute and a half.
 TEST(RealPairs, KneelingManStandsUpGuidedByTheSignaturesAlone) {
     const std::optional<SimplifiedPair> pair = michael_pair(2, 0);
     if (!pair) {
@@ -279,7 +283,8 @@ TEST(RealPairs, KneelingManStandsUpGuidedByTheSignaturesAlone) {
                 static_cast<int>(result.signature_fallback));
     EXPECT_TRUE(result.signature_fallback);
     EXPECT_EQ(result.eigenfunction_guidance, 0);
-    EXPECT_LT(error.mean, 0.03);
+    EXPECT_LT(error.mean, 0.02);
+    EXPECT_EQ(error.stranded_count, 0);
 }
 
 // The libigl elephant from its frame 100 to its frame 300, as docs/eval/posed_templates.json.

@@ -41,6 +41,17 @@ struct Embedding {
 /// \throws InvalidInput if a mesh has no face, bad indices or non-finite coordinates.
 [[nodiscard]] Embedding embed(const TriangleMesh& fine, const TriangleMesh& coarse);
 
+/// Embeds every vertex of `fine` in a face of its coarsened version (coarsen()): the closest of
+/// the faces around the coarse vertices nearest along the fine surface to the vertex and to its
+/// neighbours, and two coarse rings further, preferring faces that face the same way. Parts that
+/// touch without joining (a hand resting on a thigh) are not embedded in each other, as the
+/// closest face of all would have them: carried, they would drag each other apart. Fine
+/// vertices without coarse faces near them (a component coarsening dropped) are embedded as by
+/// embed(fine, coarse.mesh).
+/// \throws InvalidInput if a mesh has no face, bad indices or non-finite coordinates, or if
+///         coarse.fine_vertex does not name a fine vertex for each coarse vertex.
+[[nodiscard]] Embedding embed(const TriangleMesh& fine, const CoarseMesh& coarse);
+
 /// The fine mesh after its coarse version moved from `coarse_rest` to `coarse_deformed` (same
 /// faces), by rotation-interpolated local offsets (SPEC.md §9, step 4): each coarse vertex gets
 /// the rotation R_b = polar(Σ_{j∈N(b)} (x'_j − x'_b)(x_j − x_b)ᵀ + h² n'_b n_bᵀ) of its one
