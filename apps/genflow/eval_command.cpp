@@ -37,6 +37,7 @@ struct EvalOptions {
     std::string data_dir;           // paths in the pairs are relative to it (default: the file's)
     double second_opinion_above = MatchOptions{}.second_opinion_above;
     std::string output_dir;  // where the targets matched and the results go; empty: nowhere
+    bool stages = false;     // the mean error after each stage of each level too
     bool json = false;
 };
 
@@ -85,6 +86,17 @@ TriangleMesh target_of(const std::filesystem::path& file, const std::filesystem:
     const auto vertices = static_cast<Eigen::Index>(
         std::ceil(share->get<double>() * static_cast<double>(truth.V.rows())));
     return coarsen(truth, std::max<Eigen::Index>(vertices, 4)).mesh;
+}
+
+// The mean distance of a stage's vertices from where the ground truth has them.
+double stage_error(const MatchStage& stage, const TriangleMesh& truth) {
+    const Eigen::MatrixX3d& V = stage.mesh->V;
+    double sum = 0;
+    for (Eigen::Index v = 0; v < V.rows(); ++v) {
+        sum +=
+            (V.row(v) - truth.V.row((*stage.template_vertex)[static_cast<std::size_t>(v)])).norm();
+    }
+    return V.rows() > 0 ? sum / static_cast<double>(V.rows()) : 0;
 }
 
 void run_eval(const EvalOptions& options) {
@@ -147,6 +159,15 @@ void run_eval(const EvalOptions& options) {
             match_options.prior = prior;
             match_options.parts = parts;
             match_options.second_opinion_above = options.second_opinion_above;
+            nlohmann::json stages = nlohmann::json::array();
+            if (options.stages) {
+                match_options.stages = [&](const MatchStage& stage) {
+                    stages.push_back({{"level", stage.level},
+                                      {"stage", std::string(stage.stage)},
+                                      {"vertices", stage.mesh->V.rows()},
+                                      {"mean", stage_error(stage, truth) / diagonal}});
+                };
+            }
             const MatchResult result = match(template_mesh, target, match_options);
             const CorrespondenceError error = correspondence_error(result.deformed.V, truth);
             const double hausdorff =
@@ -154,7 +175,7 @@ void run_eval(const EvalOptions& options) {
             if (!output_dir.empty()) {
                 write_mesh(output_dir / (name + "." + prior_name + ".ply"), result.deformed);
             }
-            const nlohmann::json row = {
+            nlohmann::json row = {
                 {"pair", name},
                 {"prior", prior_name},
                 {"mean", error.mean},
@@ -171,6 +192,21 @@ void run_eval(const EvalOptions& options) {
                 {"swapped_limbs", result.swapped_limbs},
                 {"map_fits", result.map_fits},
                 {"seconds", result.seconds}};
+            if (options.stages) {
+                row["stages"] = stages;
+                if (!options.json) {  // beside the table, which stays Markdown
+                    std::string line = name + " " + prior_name + ":";
+                    for (const nlohmann::json& stage : stages) {
+                        char figure[32];
+                        std::snprintf(figure, sizeof figure, " %.2f %%",
+                                      100 * stage["mean"].get<double>());
+                        line += " level " + std::to_string(stage["level"].get<int>()) + " " +
+                                stage["stage"].get<std::string>() + figure + ",";
+                    }
+                    line.back() = '\n';
+                    std::fputs(line.c_str(), stderr);
+                }
+            }
             rows.push_back(row);
             if (!options.json) {
                 std::printf(
@@ -222,6 +258,9 @@ void register_eval_command(CLI::App& app) {
                         "Write there each pair's target as matched (NAME.target.ply) and each "
                         "match's deformed template (NAME.PRIOR.ply, the template's vertices and "
                         "faces)");
+    command->add_flag("--stages", options->stages,
+                      "Also the mean error after each stage of each level (\"stages\" in the "
+                      "JSON; on standard error beside the table): where a match lost accuracy");
     command->add_flag("--json", options->json, "Print JSON instead of a table");
     command->callback([options] { run_eval(*options); });
 }

@@ -756,6 +756,13 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     result.initial_alignment = best_start;
     result.levels.push_back(
         report(best.mesh, coarsest, best, pyramid_seconds + seconds_since(clock)));
+    const auto tell_stage = [&](int l, std::string_view stage, const TriangleMesh& mesh) {
+        if (options.stages) {
+            options.stages(
+                {l, count, stage, &mesh, &pyramid[static_cast<std::size_t>(l)].original_vertex});
+        }
+    };
+    tell_stage(count - 1, "coarsest", best.mesh);
     if (spectral) {
         result.intrinsic_disagreement = disagreement(*spectral, best.mesh.V);
     }
@@ -951,10 +958,12 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         clock = std::chrono::steady_clock::now();
         const Level& level = pyramid[static_cast<std::size_t>(l)];
         const TriangleMesh moved = carry_to(l, current.V);
+        tell_stage(l, "carried", moved);
         const bool refined_level = refines && l == count - 2;
         FlowResult flow = refined_level ? refine(l, moved)
                                         : flow_level(l, moved, options.fine_iterations, best_start,
                                                      options.prior);
+        tell_stage(l, "flowed", flow.mesh);
         // One fine map serves the turn-back and the first fit.
         std::optional<detail::FineSpectrum> spectrum;
         if (refined_level && (options.turn_back_parts || options.map_fits > 0) && !cancelled) {
@@ -975,6 +984,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             fit_to_map(l, *spectrum, flow, spectrum->zoomed_out_map(flow.mesh.V));
         }
         result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));
+        tell_stage(l, "done", flow.mesh);
         current = std::move(flow.mesh);
     }
     if (cancelled && static_cast<int>(result.levels.size()) < count) {

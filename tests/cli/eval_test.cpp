@@ -60,6 +60,31 @@ TEST(EvalCli, MatchesAPairAgainstItsRemeshedTarget) {
     EXPECT_EQ(rows[0]["signature_fallback"], false);
 }
 
+// With --stages each row has the error after each stage: here one level, whose result is the
+// match's; beside a table they go to standard error, one line per row.
+TEST(EvalCli, ReportsTheErrorAfterEachStage) {
+    const test::TemporaryDirectory directory;
+    const auto file = write_pair(directory.path(), {{"target_remeshed", "resampled.obj"}});
+    const auto json = run_genflow("eval " + quoted(file) + " --priors rigid --stages --json");
+    ASSERT_EQ(json.exit_code, 0) << json.err;
+    const auto rows = nlohmann::json::parse(json.out);
+    ASSERT_EQ(rows.size(), 1u);
+    const auto& stages = rows[0]["stages"];
+    ASSERT_EQ(stages.size(), 1u) << stages.dump();
+    EXPECT_EQ(stages[0]["level"], 0);
+    EXPECT_EQ(stages[0]["stage"], "coarsest");
+    EXPECT_EQ(stages[0]["vertices"], 642);
+    EXPECT_NEAR(stages[0]["mean"].template get<double>(), rows[0]["mean"].template get<double>(),
+                1e-12);
+
+    const auto table = run_genflow("eval " + quoted(file) + " --priors rigid --stages");
+    ASSERT_EQ(table.exit_code, 0) << table.err;
+    EXPECT_NE(table.err.find("limb rigid: level 0 coarsest "), std::string::npos) << table.err;
+    EXPECT_NE(table.out.find("| limb | rigid | "), std::string::npos) << table.out;
+    EXPECT_EQ(run_genflow("eval " + quoted(file) + " --priors rigid --json").out.find("\"stages\""),
+              std::string::npos);  // only when asked
+}
+
 TEST(EvalCli, MatchesAPairAgainstItsGroundTruthSimplified) {
     const test::TemporaryDirectory directory;
     const auto file = write_pair(directory.path(), {{"target_simplified", 0.6}});

@@ -451,6 +451,39 @@ TEST(Match, CarriesTheCoarseMatchToTheInputResolution) {
     EXPECT_LT(error, 0.02 * bounding_box_diagonal(target));
 }
 
+// The stages show each level's template on its way, in order, as the level's vertices (nested
+// subsets of the template's); the last is the result, and watching changes nothing.
+TEST(Match, StagesShowEachLevelOnItsWayAndDoNotChangeTheMatch) {
+    const TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target = make_limb(4, 9);
+    target.V = some_similarity().apply(target.V);
+    MatchOptions options;
+    options.prior = MatchPrior::Rigid;
+    options.levels = 2;
+    const MatchResult unwatched = match(template_mesh, target, options);
+    std::vector<std::pair<int, std::string>> seen;
+    Eigen::MatrixX3d last;
+    options.stages = [&](const MatchStage& stage) {
+        seen.emplace_back(stage.level, std::string(stage.stage));
+        EXPECT_EQ(stage.levels, 2);
+        ASSERT_NE(stage.mesh, nullptr);
+        ASSERT_NE(stage.template_vertex, nullptr);
+        ASSERT_EQ(static_cast<Eigen::Index>(stage.template_vertex->size()), stage.mesh->V.rows());
+        for (const Eigen::Index v : *stage.template_vertex) {
+            ASSERT_GE(v, 0);
+            ASSERT_LT(v, template_mesh.V.rows());
+        }
+        EXPECT_EQ(stage.mesh->V.rows() == template_mesh.V.rows(), stage.level == 0);
+        last = stage.mesh->V;
+    };
+    const MatchResult watched = match(template_mesh, target, options);
+    const std::vector<std::pair<int, std::string>> expected{
+        {1, "coarsest"}, {0, "carried"}, {0, "flowed"}, {0, "done"}};
+    EXPECT_EQ(seen, expected);
+    EXPECT_EQ(last, watched.deformed.V);
+    EXPECT_EQ(watched.deformed.V, unwatched.deformed.V);
+}
+
 TEST(Match, ArticulatedPriorFollowsABendTheRigidPriorCannot) {
     const BentLimbPair pair;
     MatchOptions options = one_candidate_options();

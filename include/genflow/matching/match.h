@@ -5,6 +5,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "genflow/flows/flow.h"
@@ -45,6 +46,22 @@ struct MatchProgress {
     int max_steps = 0;
     double energy = 0;                   ///< d_H after this step
     const TriangleMesh* mesh = nullptr;  ///< the deformed template (valid during the call)
+};
+
+/// A level's deformed template after one stage of match()'s work, for diagnostics
+/// (MatchOptions::stages): compared with a ground truth, it tells which stage lost accuracy.
+struct MatchStage {
+    int level = 0;  ///< 0 is the finest; levels − 1 the coarsest
+    int levels = 1;
+    /// "coarsest": the coarsest level's kept result (after the start selection, the guided
+    /// rounds, the second opinion and the limb exchanges); then per finer level "carried" (the
+    /// coarser result transferred, before any flow), "flowed" (after the level's flows) and
+    /// "done" (the level's result, after turning parts back, fits to the fine map and limb
+    /// exchanges, where the level has them).
+    std::string_view stage;
+    const TriangleMesh* mesh = nullptr;  ///< the deformed template (valid during the call)
+    /// Per vertex of `mesh`, the input template's vertex it is (the levels are nested).
+    const std::vector<Eigen::Index>* template_vertex = nullptr;
 };
 
 /// Above this intrinsic disagreement (MatchResult::intrinsic_disagreement) a match is doubtful.
@@ -324,6 +341,9 @@ struct MatchOptions {
     /// them reports, possibly from another thread than the caller's, and the others stop when
     /// it is told to: the callback is never called twice at once.
     std::function<bool(const MatchProgress&)> progress = {};
+    /// Called with each level's result after each stage (MatchStage), from the calling thread.
+    /// Optional; it does not change the match.
+    std::function<void(const MatchStage&)> stages = {};
 };
 
 /// One level of a match, coarsest first in MatchResult::levels.
