@@ -143,6 +143,26 @@ private:
     std::vector<std::vector<int>> faces_at_;
 };
 
+// Per vertex of `mesh`, the vertices within `rings` edges of it (itself included), sorted.
+std::vector<std::vector<Eigen::Index>> vertices_within(const TriangleMesh& mesh, int rings) {
+    const std::vector<std::vector<Eigen::Index>> ring = vertex_neighbours(mesh.F, mesh.V.rows());
+    std::vector<std::vector<Eigen::Index>> within(ring.size());
+    for (std::size_t v = 0; v < within.size(); ++v) {
+        std::vector<Eigen::Index>& near = within[v];
+        near.push_back(static_cast<Eigen::Index>(v));
+        for (int r = 0; r < rings; ++r) {
+            const std::size_t inner = near.size();
+            for (std::size_t k = 0; k < inner; ++k) {
+                const std::vector<Eigen::Index>& next = ring[static_cast<std::size_t>(near[k])];
+                near.insert(near.end(), next.begin(), next.end());
+            }
+            std::sort(near.begin(), near.end());
+            near.erase(std::unique(near.begin(), near.end()), near.end());
+        }
+    }
+    return within;
+}
+
 void set_row(Embedding& embedding, Eigen::Index i, const Eigen::Vector3d& p,
              const SurfacePoint& at) {
     embedding.face[i] = static_cast<int>(at.face);
@@ -210,23 +230,7 @@ Embedding embed(const TriangleMesh& fine, const CoarseMesh& coarse) {
     // a thigh is near the thigh in space, not along the surface.
     const detail::ChordGraph edges = detail::chord_graph(fine, 1);
     const std::vector<Eigen::Index> nearest = detail::nearest_sources(edges, coarse.fine_vertex);
-    // Per coarse vertex, the coarse vertices within kCoarseRings of it (itself included), sorted.
-    const std::vector<std::vector<Eigen::Index>> coarse_ring =
-        vertex_neighbours(coarse.mesh.F, coarse.mesh.V.rows());
-    std::vector<std::vector<Eigen::Index>> reach(coarse_ring.size());
-    for (std::size_t c = 0; c < reach.size(); ++c) {
-        std::vector<Eigen::Index>& within = reach[c];
-        within.push_back(static_cast<Eigen::Index>(c));
-        for (int r = 0; r < kCoarseRings; ++r) {
-            const std::size_t inner = within.size();
-            for (std::size_t k = 0; k < inner; ++k) {
-                const auto& ring = coarse_ring[static_cast<std::size_t>(within[k])];
-                within.insert(within.end(), ring.begin(), ring.end());
-            }
-            std::sort(within.begin(), within.end());
-            within.erase(std::unique(within.begin(), within.end()), within.end());
-        }
-    }
+    const std::vector<std::vector<Eigen::Index>> reach = vertices_within(coarse.mesh, kCoarseRings);
     const TriangleBvh bvh(coarse.mesh);
     const Eigen::MatrixX3d fine_normals = vertex_normals(fine);
     const CoarseFaces faces(coarse.mesh);
