@@ -35,13 +35,28 @@ ChordGraph chord_graph(const TriangleMesh& mesh, int rings) {
     return graph;
 }
 
-Eigen::VectorXd path_lengths_from(const ChordGraph& graph, Eigen::Index source) {
+namespace {
+
+// Dijkstra from every source at once: each vertex's path length to the nearest source and, if
+// `nearest` is given, that source's position in `sources` (ties to the earlier; -1 unreached).
+Eigen::VectorXd shortest_paths(const ChordGraph& graph, const std::vector<Eigen::Index>& sources,
+                               std::vector<Eigen::Index>* nearest) {
     Eigen::VectorXd distance =
         Eigen::VectorXd::Constant(static_cast<Eigen::Index>(graph.size()), kUnreachable);
+    if (nearest != nullptr) {
+        nearest->assign(graph.size(), -1);
+    }
     using Entry = std::pair<double, Eigen::Index>;
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-    distance(source) = 0;
-    queue.emplace(0.0, source);
+    for (std::size_t s = 0; s < sources.size(); ++s) {
+        if (distance(sources[s]) > 0) {
+            distance(sources[s]) = 0;
+            if (nearest != nullptr) {
+                (*nearest)[static_cast<std::size_t>(sources[s])] = static_cast<Eigen::Index>(s);
+            }
+            queue.emplace(0.0, sources[s]);
+        }
+    }
     while (!queue.empty()) {
         const auto [d, v] = queue.top();
         queue.pop();
@@ -51,6 +66,10 @@ Eigen::VectorXd path_lengths_from(const ChordGraph& graph, Eigen::Index source) 
         for (const Chord& chord : graph[static_cast<std::size_t>(v)]) {
             if (d + chord.length < distance(chord.vertex)) {
                 distance(chord.vertex) = d + chord.length;
+                if (nearest != nullptr) {
+                    (*nearest)[static_cast<std::size_t>(chord.vertex)] =
+                        (*nearest)[static_cast<std::size_t>(v)];
+                }
                 queue.emplace(d + chord.length, chord.vertex);
             }
         }
@@ -58,35 +77,16 @@ Eigen::VectorXd path_lengths_from(const ChordGraph& graph, Eigen::Index source) 
     return distance;
 }
 
+}  // namespace
+
+Eigen::VectorXd path_lengths_from(const ChordGraph& graph, Eigen::Index source) {
+    return shortest_paths(graph, {source}, nullptr);
+}
+
 std::vector<Eigen::Index> nearest_sources(const ChordGraph& graph,
                                           const std::vector<Eigen::Index>& sources) {
-    std::vector<double> distance(graph.size(), kUnreachable);
-    std::vector<Eigen::Index> nearest(graph.size(), -1);
-    using Entry = std::pair<double, Eigen::Index>;
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-    for (std::size_t s = 0; s < sources.size(); ++s) {
-        const auto v = static_cast<std::size_t>(sources[s]);
-        if (nearest[v] < 0) {
-            distance[v] = 0;
-            nearest[v] = static_cast<Eigen::Index>(s);
-            queue.emplace(0.0, sources[s]);
-        }
-    }
-    while (!queue.empty()) {
-        const auto [d, v] = queue.top();
-        queue.pop();
-        if (d > distance[static_cast<std::size_t>(v)]) {
-            continue;
-        }
-        for (const Chord& chord : graph[static_cast<std::size_t>(v)]) {
-            const auto w = static_cast<std::size_t>(chord.vertex);
-            if (d + chord.length < distance[w]) {
-                distance[w] = d + chord.length;
-                nearest[w] = nearest[static_cast<std::size_t>(v)];
-                queue.emplace(d + chord.length, chord.vertex);
-            }
-        }
-    }
+    std::vector<Eigen::Index> nearest;
+    (void)shortest_paths(graph, sources, &nearest);
     return nearest;
 }
 
