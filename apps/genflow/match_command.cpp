@@ -274,9 +274,10 @@ void register_match_command(CLI::App& app) {
     add_second_opinion_option(*command, options->match.second_opinion_above);
     command
         ->add_option("--alternative-starts", options->match.alternative_starts,
-                     "A result still doubtful after the second opinion is matched again from "
-                     "the intrinsic starts of up to this many further landmark sets, side by "
-                     "side; the one that disagrees least is kept (0: none)")
+                     "A result still doubtful after the second opinion, or one the second "
+                     "opinion gave, is matched again from the intrinsic starts of up to this "
+                     "many further landmark sets, side by side; the one that disagrees least is "
+                     "kept (0: none)")
         ->check(CLI::Range(0, 7))
         ->capture_default_str();
     command->add_flag("--no-limb-swaps", options->no_limb_swaps,

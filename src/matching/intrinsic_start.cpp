@@ -274,14 +274,22 @@ std::optional<IntrinsicStart> start_from_map(const TriangleMesh& template_mesh,
         const Eigen::Index nearest = analysed.nearest(template_mesh.V.row(v).transpose()).first;
         start.placement.row(v) = to.coarse.mesh.V.row(map[static_cast<std::size_t>(nearest)]);
     }
+    const Eigen::RowVector3d centre = start.placement.colwise().mean();
+    if (!((start.placement.rowwise() - centre).squaredNorm() > 0)) {
+        return std::nullopt;
+    }
+    // The scale from the areas, which bending keeps (as the rigid starts'), and the rotation
+    // and translation that fit the placement best at that scale. A least-squares similarity
+    // would shrink the template to fit a pose folded onto itself: the kneeling TOSCA michael
+    // took the standing one at 0.52 of its size.
+    const double scale = to.unit / from.unit;
     const Eigen::Matrix4d fit =
-        Eigen::umeyama(template_mesh.V.transpose(), start.placement.transpose(), true);
-    const double scale = fit.block<3, 1>(0, 0).norm();
+        Eigen::umeyama(scale * template_mesh.V.transpose(), start.placement.transpose(), false);
     if (!(scale > 0) || !fit.allFinite()) {
         return std::nullopt;
     }
     start.similarity.scale = scale;
-    start.similarity.rotation = fit.topLeftCorner<3, 3>() / scale;
+    start.similarity.rotation = fit.topLeftCorner<3, 3>();
     start.similarity.translation = fit.topRightCorner<3, 1>();
     return start;
 }

@@ -31,8 +31,9 @@ namespace genflow::detail {
 struct IntrinsicStart {
     /// Each template vertex at the target vertex it corresponds to (#V×3).
     Eigen::MatrixX3d placement;
-    /// The least-squares similarity of the template onto `placement` (Umeyama): a rigid start
-    /// that agrees with it.
+    /// A rigid start that agrees with `placement`: scaled by the square root of the shapes'
+    /// area ratio (which bending keeps), turned and moved onto `placement` in the least-squares
+    /// sense at that scale (Umeyama).
     Similarity similarity;
     /// The extremities matched.
     int landmarks = 0;

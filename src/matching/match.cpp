@@ -143,6 +143,13 @@ constexpr double kMapFitLength = 0.01;
 // it changes between the successive maps of a converged fit (−2.0 … +4.6 % on the 10 results
 // measured, docs/eval/results.md).
 constexpr double kMapFitProgress = 0.05;
+// MatchOptions::second_opinion_above, alternative_starts: how much less an intrinsic start's
+// result must disagree than the rigid starts' best to replace it. The disagreement ranks
+// results that are far apart well (TOSCA michael kneeling: 0.14 from the intrinsic start,
+// 1.1 % off, against 0.57 from the best rigid one) but not near ties: FAUST 003→000
+// (articulated) matched front to back from an intrinsic start, 17 % off at the coarsest level,
+// at 0.33, against 0.40 for the rigid start's 4.4 % (0.86 % at the end).
+constexpr double kIntrinsicMargin = 0.25;
 // MatchOptions::swap_limbs, at the coarsest level (swapped_limbs.h), measured on the 45 h1
 // results of docs/eval:
 // - how much an exchange of two limbs' places must raise the turning functions' agreement to
@@ -651,9 +658,16 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         run_side_by_side(contenders.size(), [&](std::size_t k) {
             outcomes[k] = guided_match(contenders[k], k == 0, placement_of(k));
         });
+        // Whether outcome k goes on instead of outcome `than`: it disagrees less, clearly less
+        // (kIntrinsicMargin) if k is an intrinsic start's and `than` a rigid start's.
+        const auto preferred = [&](std::size_t k, std::size_t than) {
+            const bool intrinsic_over_rigid = k >= rigid_contenders && than < rigid_contenders;
+            return outcomes[k].disagreement < (intrinsic_over_rigid ? 1 - kIntrinsicMargin : 1.0) *
+                                                  outcomes[than].disagreement;
+        };
         std::size_t kept = 0;
         for (std::size_t k = 0; k < outcomes.size(); ++k) {
-            if (!cancelled && outcomes[k].disagreement < outcomes[kept].disagreement) {
+            if (!cancelled && preferred(k, kept)) {
                 kept = k;
             }
         }
@@ -665,7 +679,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             add_intrinsic_contender()) {
             outcomes.push_back(
                 guided_match(contenders.back(), true, placement_of(rigid_contenders)));
-            if (!cancelled && outcomes.back().disagreement < outcomes[kept].disagreement) {
+            if (!cancelled && preferred(outcomes.size() - 1, kept)) {
                 kept = outcomes.size() - 1;
             }
         }
@@ -673,11 +687,11 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             result.second_opinion_disagreement = outcomes[rigid_contenders].disagreement;
             result.second_opinion = kept == rigid_contenders;
         }
-        // A doubtful result is matched again from the intrinsic starts of the next landmark
-        // sets, side by side; the one that disagrees least is kept
-        // (MatchOptions::alternative_starts).
+        // A doubtful result, or one from the second opinion, is matched again from the
+        // intrinsic starts of the next landmark sets, side by side; the one that disagrees least
+        // is kept (MatchOptions::alternative_starts).
         if (!cancelled && intrinsic.size() > 1 &&
-            outcomes[kept].disagreement > kDoubtfulDisagreement) {
+            (outcomes[kept].disagreement > kDoubtfulDisagreement || result.second_opinion)) {
             const std::size_t first = outcomes.size();
             for (std::size_t next = 1; next < intrinsic.size(); ++next) {
                 starts.push_back(intrinsic[next].similarity);
@@ -690,7 +704,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             });
             result.alternative_starts = static_cast<int>(intrinsic.size() - 1);
             for (std::size_t k = first; k < outcomes.size() && !cancelled; ++k) {
-                if (outcomes[k].disagreement < outcomes[kept].disagreement) {
+                if (preferred(k, kept)) {
                     kept = k;
                     result.second_opinion = false;
                     result.alternative_start = static_cast<int>(k - first + 1);

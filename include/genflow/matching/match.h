@@ -287,28 +287,29 @@ struct MatchOptions {
     int map_fits = 6;
     /// A second opinion for guided matches (h1, articulated): the guided rounds of the coarsest
     /// level again, from a start found without the flow (the shapes' extremities matched by
-    /// their geodesic distances, a functional map fitted to them, the template's least-squares
-    /// similarity onto where that map puts it; src/matching/intrinsic_start.h), whose placement
-    /// also serves to estimate the eigenfunctions' map. The result that disagrees less with the
-    /// target is kept (MatchResult::second_opinion). At 0, the default, it is asked of every
-    /// match and contends side by side with the rigid starts' guided rounds; above 0, only of
-    /// results whose disagreement is above this, after them; +∞ never. TOSCA michael kneeling
-    /// (h1): 15.3 → 3.5 % mean error, 17333 → 2639 vertices stranded. Asked of every match, on
-    /// the 29 h1 pairs of docs/eval/results.md it was kept on 10: better on 8 (the libigl arm's
-    /// pose 1 0.92 → 0.35 %, the makehuman body 0.66 → 0.54 %, small FAUST 0.86 → 0.74 %), the
-    /// same on one, worse on FAUST (1.36 → 1.40 %); on the 11 articulated ones kept on 3 (FAUST
-    /// 000→003 3.87 → 3.25 %, the arm's pose 1 0.63 → 0.56 %, FAUST 000→002 the same). Side by
-    /// side it cost 1.23 times the time on the 12 h1 pairs of pairs.json (one after the other,
-    /// as at kDoubtfulDisagreement, 1.45 times where it runs).
+    /// their geodesic distances, a functional map fitted to them, the template at the shapes'
+    /// area ratio turned and moved onto where that map puts it; src/matching/intrinsic_start.h),
+    /// whose placement also serves to estimate the eigenfunctions' map. Its result is kept if it
+    /// disagrees clearly less with the target, by a quarter, than the rigid starts' best
+    /// (MatchResult::second_opinion): the disagreement ranks results far apart well, not near
+    /// ties (FAUST 003→000, articulated: front to back from the intrinsic start at 0.33, 17 %
+    /// off at the coarsest level, against 0.40 for the rigid start's 4.4 %). At 0, the default, it
+    /// is asked of every match and contends side by side with the rigid starts' guided rounds;
+    /// above 0, only of results whose disagreement is above this, after them; +∞ never. TOSCA
+    /// michael kneeling (h1): 15.3 → 3.5 % mean error (1.1 % since the start keeps his size).
+    /// Side by side it cost 1.23 times the time on the 12 h1 pairs of pairs.json (one after the
+    /// other, as at kDoubtfulDisagreement, 1.45 times where it runs).
     double second_opinion_above = 0;
     /// A result still doubtful after the second opinion (intrinsic disagreement above
-    /// kDoubtfulDisagreement) is matched again from the intrinsic starts of up to this many of
-    /// the next landmark sets (detail::intrinsic_starts(): by how well their maps keep the
-    /// orientation), side by side; the one that disagrees least is kept
-    /// (MatchResult::alternative_start). The preferred set is often a mirror image where the
-    /// pose breaks the symmetry the orientation test relies on: TOSCA michael standing to
-    /// kneeling (1→2) was matched front to back, 22.2 % mean error; from the next set 4.9 %.
-    /// Needs the second opinion (second_opinion_above); 0 = none.
+    /// kDoubtfulDisagreement), or one the second opinion gave, is matched again from the
+    /// intrinsic starts of up to this many of the next landmark sets (detail::intrinsic_starts():
+    /// by how well their maps keep the orientation), side by side; the one that disagrees least
+    /// is kept (MatchResult::alternative_start). The preferred set is often a mirror image where
+    /// the pose breaks the symmetry the orientation test relies on: TOSCA michael standing to
+    /// kneeling (1→2) was matched front to back, 22.6 % mean error, though not doubtful (0.27);
+    /// from the next set 0.24. A result from the second opinion rests on that set alone, so
+    /// the next ones are tried whatever its disagreement. Needs the second opinion
+    /// (second_opinion_above); 0 = none.
     int alternative_starts = 3;
     /// Limbs put on each other's places: a template whose stride puts its left leg where the
     /// target has its right one is matched with the two exchanged, and neither d_H nor the
