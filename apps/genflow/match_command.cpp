@@ -295,7 +295,8 @@ void register_match_command(CLI::App& app) {
         ->add_option("--map-fits", options->match.map_fits,
                      "At most this many fits of the refined match to where that map puts it, "
                      "each kept only if the heat kernel signatures then agree better with the "
-                     "target (0: none)")
+                     "target, or the turning functions of pairs of extremities clearly better, "
+                     "and not if the map was mirrored (0: none)")
         ->check(CLI::Range(0, 100))
         ->capture_default_str();
     command->add_flag("--implicit", options->match.implicit,

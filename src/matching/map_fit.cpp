@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "matching/map_fit.h"
 
+#include <algorithm>
 #include <string>
 
 #include "genflow/exceptions.h"
@@ -72,6 +73,18 @@ Eigen::MatrixX3d fitted_to_map(const TriangleMesh& deformed, const Eigen::Matrix
     SpdSolver solver;
     solver.compute(system, "fitted_to_map");
     return deformed.V + solver.solve(weighted.asDiagonal() * (placement - deformed.V));
+}
+
+bool keeps_fit(const FitRating& current, const FitRating& fitted, double progress) {
+    if (fitted.turning < std::min(0.0, current.turning)) {
+        return false;
+    }
+    if (fitted.discrepancy < (1 - progress) * current.discrepancy) {
+        return true;
+    }
+    return fitted.turning >= kMapFitRightTurning &&
+           fitted.turning > current.turning + kMapFitTurningGain &&
+           fitted.discrepancy <= (1 + kMapFitTurningDiscrepancy) * current.discrepancy;
 }
 
 }  // namespace genflow::detail

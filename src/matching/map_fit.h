@@ -15,6 +15,17 @@
 // wherever the fit did real harm (the makehuman body 0.54 → 2.29 %, its map being coarser
 // than the match; TOSCA michael kneeling 3.49 → 7.34 %, where the match is wrong over whole
 // parts and ZoomOut ends near a wrong map).
+//
+// The signatures cannot tell left from right, and neither can the map: on a figure whose left
+// and right agree, ZoomOut may end near the mirrored map, and a match drawn towards it lies on
+// the target inside out while its signatures agree better (TOSCA michael standing to kneeling,
+// 2.65 → 4.59 % at the refined level, 65 % of its area facing away from the target). The
+// turning functions tell (swapped_limbs.h): through such a fit their agreement with the
+// target's falls below zero (michael 0.33 → −0.34). And a fit that sets right a match whose
+// limbs lie around the wrong way may leave the signatures a little worse: the libigl elephant
+// from rest to frame 300, 3.95 % off at the coarsest level, 1.39 % after its fit, against 3.62 %
+// without (signatures +8.8 %, turning functions 0.40 → 0.78). So a fit is judged by both
+// (keeps_fit()).
 #pragma once
 
 #include <Eigen/Core>
@@ -48,5 +59,36 @@ inline constexpr double kMapTear = 3;
 [[nodiscard]] Eigen::MatrixX3d fitted_to_map(const TriangleMesh& deformed,
                                              const Eigen::MatrixX3d& placement, double length,
                                              const Eigen::VectorXd& weights = {});
+
+/// How well a match agrees with its target intrinsically, before or after a fit.
+struct FitRating {
+    /// The heat kernel signatures' discrepancy (SpectralDescriptors::discrepancy()); lower is
+    /// better.
+    double discrepancy = 0;
+    /// The turning functions' agreement (turning_agreement()): near 1 for a map that keeps every
+    /// direction, below 0 for one that reverses most; 0 when it is not known.
+    double turning = 0;
+};
+
+/// A right map's turning agreement (0.46–0.80 on 37 of the 45 h1 results of docs/eval, as
+/// swapped_limbs.h's check measured it).
+inline constexpr double kMapFitRightTurning = 0.4;
+/// How much a fit must raise the turning agreement to be kept although the signatures agree
+/// worse: more than fits that set nothing right move it. On the 67 h1 and articulated results
+/// of docs/eval, the first fits the signatures kept changed it by −0.04 … +0.06 where nothing
+/// large moved, and by +0.15 … +0.58 where whole limbs did; of those they refused, two raised
+/// it to a right map's: the elephant's (+0.38; 3.62 → 1.39 %) and the libigl arm's from rest to
+/// pose 3, articulated (+0.10; 1.16 → 0.98 %).
+inline constexpr double kMapFitTurningGain = 0.08;
+/// How much worse the signatures may then agree (as after an exchange of two limbs, which they
+/// cannot tell either: −23 … +5 % on the three measured; the elephant's fit +8.8 %).
+inline constexpr double kMapFitTurningDiscrepancy = 0.1;
+
+/// Whether a fit that took a match rated `current` to one rated `fitted` is kept: never if it
+/// leaves the turning agreement below both zero and where it was (the map it was drawn to is
+/// mirrored); else if the signatures agree better by the share `progress` (0: at all), or if
+/// the turning functions then agree as a right map's do, by kMapFitTurningGain more, with the
+/// signatures at most kMapFitTurningDiscrepancy worse.
+[[nodiscard]] bool keeps_fit(const FitRating& current, const FitRating& fitted, double progress);
 
 }  // namespace genflow::detail

@@ -809,6 +809,24 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         return rows;
     };
 
+    // The refined level's intrinsic analyses (template and target), once asked for; none if an
+    // eigen-solve fails (as the second opinion, which then is not asked).
+    std::optional<std::pair<detail::IntrinsicShape, detail::IntrinsicShape>> level_shapes;
+    int analysed = -1;  // the level level_shapes analyse, if any was asked for
+    const auto analysed_level = [&](int l) -> const auto* {
+        if (analysed != l) {
+            analysed = l;
+            const Level& level = pyramid[static_cast<std::size_t>(l)];
+            try {
+                level_shapes.emplace(detail::analyse_intrinsic_shape(level.template_mesh),
+                                     detail::analyse_intrinsic_shape(level.target));
+            } catch (const SolverError&) {
+                level_shapes.reset();
+            }
+        }
+        return level_shapes ? &*level_shapes : nullptr;
+    };
+
     // The next finer level's flows (MatchOptions::refinement_guidances): the plain one, and
     // those first guided by the eigenfunctions carried over by the map the coarsest result
     // implies, side by side; the result whose coarsest vertices disagree least is kept.
@@ -873,8 +891,9 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
 
     // The refined level drawn towards where the fine map puts it, where the map does not tear
     // off small pieces, and flowed again (MatchOptions::map_fits); kept if its heat kernel
-    // signatures then agree better with the target's. Each further fit starts from the map of
-    // the level as last fitted and must do clearly better (kMapFitProgress).
+    // signatures then agree better with the target's, or its turning functions clearly better,
+    // and the map was not mirrored (detail::keeps_fit()). Each further fit starts from the map
+    // of the level as last fitted and must do clearly better (kMapFitProgress).
     const auto fit_to_map = [&](int l, const detail::FineSpectrum& spectrum, FlowResult& flow,
                                 detail::VertexMap map) {
         // Every map of the spectrum has as many functions as the first.
@@ -884,7 +903,18 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         const Level& level = pyramid[static_cast<std::size_t>(l)];
         const double target_edge = mean_edge_length(level.target);
         const std::vector<Eigen::Index> rows = coarsest_rows(l);
-        double discrepancy = spectral->discrepancy(flow.mesh.V(rows, Eigen::all));
+        // The turning functions' agreement, 0 (not known) without the level's analyses.
+        const auto* shapes = analysed_level(l);
+        const auto turning = [&](const Eigen::MatrixX3d& deformed) {
+            if (shapes == nullptr) {
+                return 0.0;
+            }
+            const auto& [from, to] = *shapes;
+            return detail::place_limbs(from, to, deformed(from.coarse.fine_vertex, Eigen::all))
+                .agreement;
+        };
+        detail::FitRating rating{spectral->discrepancy(flow.mesh.V(rows, Eigen::all)),
+                                 turning(flow.mesh.V)};
         for (int fit = 0; fit < options.map_fits && !cancelled; ++fit) {
             if (fit > 0) {
                 map = spectrum.zoomed_out_map(flow.mesh.V);
@@ -897,15 +927,16 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 detail::fitted_to_map(flow.mesh, placement, kMapFitLength * diagonal, trusted);
             FlowResult again = flow_level(l, fitted, options.refinement_iterations, best_start,
                                           options.prior, {}, options.stretch_weight, false);
-            const double fitted_discrepancy = spectral->discrepancy(again.mesh.V(rows, Eigen::all));
-            const double required = fit == 0 ? 1 : 1 - kMapFitProgress;
-            if (cancelled || !(fitted_discrepancy < required * discrepancy)) {
+            const detail::FitRating fitted_rating{
+                spectral->discrepancy(again.mesh.V(rows, Eigen::all)), turning(again.mesh.V)};
+            if (cancelled ||
+                !detail::keeps_fit(rating, fitted_rating, fit == 0 ? 0 : kMapFitProgress)) {
                 return;
             }
             again.steps += flow.steps;
             again.energy.front() = flow.energy.front();
             flow = std::move(again);
-            discrepancy = fitted_discrepancy;
+            rating = fitted_rating;
             ++result.map_fits;
         }
     };
@@ -926,11 +957,8 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     // if an eigen-solve of the analyses fails (as the second opinion, which then is not asked).
     const auto exchange_limbs = [&](int l, FlowResult& flow) {
         const Level& level = pyramid[static_cast<std::size_t>(l)];
-        std::optional<std::pair<detail::IntrinsicShape, detail::IntrinsicShape>> shapes;
-        try {
-            shapes.emplace(detail::analyse_intrinsic_shape(level.template_mesh),
-                           detail::analyse_intrinsic_shape(level.target));
-        } catch (const SolverError&) {
+        const auto* shapes = analysed_level(l);
+        if (shapes == nullptr) {
             return false;
         }
         const auto& [from, to] = *shapes;

@@ -152,6 +152,17 @@ TEST(SwappedLimbs, RefusesPlacementsOfAnotherSize) {
                  InvalidInput);
 }
 
+// A match that lays the whole figure on its mirror image (x → −x, which the symmetric figure
+// fits as well as itself) reverses every pair's turning function: the agreement falls below
+// zero, which is how a fit to a mirrored map is told (detail::keeps_fit()).
+TEST(SwappedLimbs, AMirroredMatchAgreesNegatively) {
+    const SwappedLegs figure;
+    Eigen::MatrixX3d mirrored = figure.from.coarse.mesh.V;
+    mirrored.col(0) = -mirrored.col(0);
+    EXPECT_LT(detail::place_limbs(figure.from, figure.to, mirrored).agreement, -0.5);
+    EXPECT_GT(figure.placed(false).agreement, 0.5);
+}
+
 // The agreement of a map with itself: every pair's functions are its own, correlation 1.
 TEST(SwappedLimbs, AShapeAgreesWithItself) {
     const SwappedLegs figure;

@@ -274,8 +274,11 @@ struct MatchOptions {
     /// After that, draw the refined level towards where the same map puts each vertex by a
     /// smooth step (H1 over 1 % of the diagonal; not where the map tears off pieces smaller than
     /// it resolves), flow again (`refinement_iterations` steps, with the stretch weight), and
-    /// keep the result if the heat kernel signatures then agree better with the target's
-    /// (src/matching/map_fit.h); then again, with the map ZoomOut finds from the fitted level,
+    /// keep the result if the heat kernel signatures then agree better with the target's, or
+    /// the turning functions clearly better with the signatures at most 10 % worse, and the
+    /// turning functions do not say the map was mirrored (src/matching/map_fit.h: TOSCA michael
+    /// standing to kneeling 5.1 → 2.7 %, the libigl elephant rest to frame 300 3.6 → 1.4 %,
+    /// h1); then again, with the map ZoomOut finds from the fitted level,
     /// up to `map_fits` fits in all, as long as each lowers the signatures' discrepancy by more
     /// than 5 % (0: no fit). On the 43 h1 and articulated results of docs/eval/results.md the
     /// first fit was kept on 20: better on 18 (hand 1.94 → 1.29 %, articulated 3.09 → 1.58 %;
