@@ -150,6 +150,16 @@ constexpr double kMapFitProgress = 0.05;
 // (articulated) matched front to back from an intrinsic start, 17 % off at the coarsest level,
 // at 0.33, against 0.40 for the rigid start's 4.4 % (0.86 % at the end).
 constexpr double kIntrinsicMargin = 0.25;
+// Near a tie the turning functions tell (swapped_limbs.h): an intrinsic start's result that
+// disagrees less, but not by kIntrinsicMargin, replaces the rigid starts' best if its turning
+// functions agree with the target's at least about as well, within this. Measured at the
+// coarsest level on the 67 h1 and articulated results of docs/eval: the results matched front
+// to back from an intrinsic start agree 0.07–0.25 worse than the rigid starts' right ones
+// (FAUST 003→000 articulated 0.37 against 0.50, 001→002 0.49 against 0.56, at a tie of the
+// disagreement); of the intrinsic results that disagreed less by less than the margin, 16
+// agreed within 0.05, and they were as good or better at that level on 15 (the libigl arm
+// rest→pose3 h1 1.51 against 3.93 %; the arm's articulated match 1.65 against 1.47 %).
+constexpr double kIntrinsicTurning = 0.05;
 // MatchOptions::swap_limbs, at the coarsest level (swapped_limbs.h), measured on the 45 h1
 // results of docs/eval:
 // - how much an exchange of two limbs' places must raise the turning functions' agreement to
@@ -658,12 +668,34 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         run_side_by_side(contenders.size(), [&](std::size_t k) {
             outcomes[k] = guided_match(contenders[k], k == 0, placement_of(k));
         });
-        // Whether outcome k goes on instead of outcome `than`: it disagrees less, clearly less
-        // (kIntrinsicMargin) if k is an intrinsic start's and `than` a rigid start's.
+        // The turning functions' agreement of outcome k with the target (swapped_limbs.h), once
+        // asked for; 0 without the shapes' analyses.
+        std::vector<std::optional<double>> turning_agreements;
+        const auto turning = [&](std::size_t k) {
+            if (!shapes) {
+                return 0.0;
+            }
+            turning_agreements.resize(std::max(turning_agreements.size(), outcomes.size()));
+            if (!turning_agreements[k]) {
+                const auto& [from, to] = *shapes;
+                turning_agreements[k] =
+                    detail::place_limbs(
+                        from, to, outcomes[k].flow.mesh.V(from.coarse.fine_vertex, Eigen::all))
+                        .agreement;
+            }
+            return *turning_agreements[k];
+        };
+        // Whether outcome k goes on instead of outcome `than`: it disagrees less; if k is an
+        // intrinsic start's and `than` a rigid start's, clearly less (kIntrinsicMargin), or less
+        // with its turning functions agreeing about as well (kIntrinsicTurning).
         const auto preferred = [&](std::size_t k, std::size_t than) {
-            const bool intrinsic_over_rigid = k >= rigid_contenders && than < rigid_contenders;
-            return outcomes[k].disagreement < (intrinsic_over_rigid ? 1 - kIntrinsicMargin : 1.0) *
-                                                  outcomes[than].disagreement;
+            const double less = outcomes[k].disagreement;
+            const double more = outcomes[than].disagreement;
+            if (k < rigid_contenders || than >= rigid_contenders) {
+                return less < more;
+            }
+            return less < (1 - kIntrinsicMargin) * more ||
+                   (less < more && turning(k) >= turning(than) - kIntrinsicTurning);
         };
         std::size_t kept = 0;
         for (std::size_t k = 0; k < outcomes.size(); ++k) {
