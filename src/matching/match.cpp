@@ -181,6 +181,16 @@ constexpr double kLimbSwapAgreement = 0.4;
 constexpr double kLimbSwapDisagreement = 0.1;
 constexpr double kLimbSwapDrift = 2 * detail::kExtremityRadius;
 
+// A template and a target analysed alike (detail::analyse_intrinsic_shape()).
+using AnalysedShapes = std::pair<detail::IntrinsicShape, detail::IntrinsicShape>;
+
+// Where a match put the template's extremities, from `deformed`: a row per vertex of the mesh
+// `shapes.first` analyses (a level of the pyramid, as matched).
+detail::LimbPlacement limbs_placed(const AnalysedShapes& shapes, const Eigen::MatrixX3d& deformed) {
+    const auto& [from, to] = shapes;
+    return detail::place_limbs(from, to, deformed(from.coarse.fine_vertex, Eigen::all));
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -635,7 +645,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         // The intrinsic starts of the next landmark sets wait for a doubtful result.
         std::vector<detail::IntrinsicStart> intrinsic;
         // The shapes' intrinsic analyses, once the second opinion needed them.
-        std::optional<std::pair<detail::IntrinsicShape, detail::IntrinsicShape>> shapes;
+        std::optional<AnalysedShapes> shapes;
         const std::size_t rigid_contenders = contenders.size();
         const auto add_intrinsic_contender = [&] {
             try {
@@ -677,11 +687,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             }
             turning_agreements.resize(std::max(turning_agreements.size(), outcomes.size()));
             if (!turning_agreements[k]) {
-                const auto& [from, to] = *shapes;
-                turning_agreements[k] =
-                    detail::place_limbs(
-                        from, to, outcomes[k].flow.mesh.V(from.coarse.fine_vertex, Eigen::all))
-                        .agreement;
+                turning_agreements[k] = limbs_placed(*shapes, outcomes[k].flow.mesh.V).agreement;
             }
             return *turning_agreements[k];
         };
@@ -752,9 +758,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             const detail::IntrinsicShape& to = shapes->second;
             const TriangleMesh& matched = outcomes[kept].flow.mesh;
             const detail::SwappedLimbs swapped = detail::find_swapped_limbs(
-                from, to,
-                detail::place_limbs(from, to, matched.V(from.coarse.fine_vertex, Eigen::all)),
-                kLimbSwapMargin, kLimbSwapAgreement);
+                from, to, limbs_placed(*shapes, matched.V), kLimbSwapMargin, kLimbSwapAgreement);
             const std::optional<Eigen::MatrixX3d> exchanged =
                 detail::exchanged_placement(coarsest.template_mesh, from, to, swapped);
             if (exchanged) {
@@ -764,8 +768,8 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 contenders.push_back(starts.size() - 1);
                 outcomes.push_back(guided_match(contenders.back(), true, &*exchanged, &drawn,
                                                 outcomes[kept].signatures_alone));
-                const detail::LimbPlacement rematched = detail::place_limbs(
-                    from, to, outcomes.back().flow.mesh.V(from.coarse.fine_vertex, Eigen::all));
+                const detail::LimbPlacement rematched =
+                    limbs_placed(*shapes, outcomes.back().flow.mesh.V);
                 if (!cancelled &&
                     detail::exchange_drift(to, swapped, rematched) <= kLimbSwapDrift &&
                     rematched.agreement >= kLimbSwapAgreement &&
@@ -843,7 +847,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
 
     // The refined level's intrinsic analyses (template and target), once asked for; none if an
     // eigen-solve fails (as the second opinion, which then is not asked).
-    std::optional<std::pair<detail::IntrinsicShape, detail::IntrinsicShape>> level_shapes;
+    std::optional<AnalysedShapes> level_shapes;
     int analysed = -1;  // the level level_shapes analyse, if any was asked for
     const auto analysed_level = [&](int l) -> const auto* {
         if (analysed != l) {
@@ -938,12 +942,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         // The turning functions' agreement, 0 (not known) without the level's analyses.
         const auto* shapes = analysed_level(l);
         const auto turning = [&](const Eigen::MatrixX3d& deformed) {
-            if (shapes == nullptr) {
-                return 0.0;
-            }
-            const auto& [from, to] = *shapes;
-            return detail::place_limbs(from, to, deformed(from.coarse.fine_vertex, Eigen::all))
-                .agreement;
+            return shapes == nullptr ? 0.0 : limbs_placed(*shapes, deformed).agreement;
         };
         detail::FitRating rating{spectral->discrepancy(flow.mesh.V(rows, Eigen::all)),
                                  turning(flow.mesh.V)};
@@ -995,9 +994,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         }
         const auto& [from, to] = *shapes;
         const detail::SwappedLimbs swapped = detail::find_swapped_limbs(
-            from, to,
-            detail::place_limbs(from, to, flow.mesh.V(from.coarse.fine_vertex, Eigen::all)),
-            kLimbSwapMargin, kLimbSwapAgreement);
+            from, to, limbs_placed(*shapes, flow.mesh.V), kLimbSwapMargin, kLimbSwapAgreement);
         const std::optional<Eigen::MatrixX3d> exchanged =
             detail::exchanged_placement(level.template_mesh, from, to, swapped);
         if (!exchanged) {
@@ -1007,8 +1004,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         drawn.V = detail::fitted_to_map(flow.mesh, *exchanged, kMapFitLength * diagonal);
         FlowResult again = flow_level(l, drawn, options.max_iterations, best_start, options.prior,
                                       {}, options.stretch_weight, false);
-        const detail::LimbPlacement rematched =
-            detail::place_limbs(from, to, again.mesh.V(from.coarse.fine_vertex, Eigen::all));
+        const detail::LimbPlacement rematched = limbs_placed(*shapes, again.mesh.V);
         const std::vector<Eigen::Index> rows = coarsest_rows(l);
         if (cancelled || !(rematched.agreement >= kLimbSwapAgreement &&
                            rematched.agreement > swapped.agreement_before + kLimbSwapMargin &&
