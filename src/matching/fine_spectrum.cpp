@@ -15,7 +15,12 @@ FineSpectrum::FineSpectrum(const TriangleMesh& template_rest, const TriangleMesh
       target_basis_(laplacian_eigenbasis(target, functions + 1)),
       target_points_(target.V) {}
 
-VertexMap FineSpectrum::zoomed_out_map(const Eigen::MatrixX3d& deformed) const {
+VertexMap FineSpectrum::zoomed_out_map(const Eigen::MatrixX3d& deformed,
+                                       Eigen::Index first_size) const {
+    if (first_size < 1) {
+        throw InvalidInput("zoomed_out_map: ZoomOut must start from at least one function, not " +
+                           std::to_string(first_size));
+    }
     if (deformed.rows() != template_basis_.functions.rows()) {
         throw InvalidInput("zoomed_out_map: the deformed template has " +
                            std::to_string(deformed.rows()) + " vertices, not " +
@@ -35,14 +40,21 @@ VertexMap FineSpectrum::zoomed_out_map(const Eigen::MatrixX3d& deformed) const {
             target_points_.nearest(deformed.row(i).transpose()).first;
     }
     const auto count = map.functions;
-    constexpr Eigen::Index kFirstSize = 10;
     constexpr Eigen::Index kStep = 5;
     map.target_vertex =
         zoom_out(template_basis_.functions.middleCols(1, count), template_basis_.masses,
                  target_basis_.functions.middleCols(1, count),
                  embedding_weights(target_basis_.values.segment(1, count)),
-                 std::move(correspondence), kFirstSize, count, kStep);
+                 std::move(correspondence), first_size, count, kStep);
     return map;
+}
+
+std::vector<VertexMap> FineSpectrum::zoomed_out_maps(const Eigen::MatrixX3d& deformed) const {
+    std::vector<VertexMap> maps;
+    for (const Eigen::Index first_size : kFineMapFirstSizes) {
+        maps.push_back(zoomed_out_map(deformed, first_size));
+    }
+    return maps;
 }
 
 }  // namespace genflow::detail

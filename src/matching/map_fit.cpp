@@ -87,4 +87,15 @@ bool keeps_fit(const FitRating& current, const FitRating& fitted, double progres
            fitted.discrepancy <= (1 + kMapFitTurningDiscrepancy) * current.discrepancy;
 }
 
+std::optional<std::size_t> first_kept_fit(const FitRating& current,
+                                          const std::vector<FitRating>& fitted, double progress) {
+    for (std::size_t k = 0; k < fitted.size(); ++k) {
+        const bool turns_worse = fitted[k].turning < current.turning - kMapFitTurningGain;
+        if (keeps_fit(current, fitted[k], progress) && (k == 0 || !turns_worse)) {
+            return k;
+        }
+    }
+    return std::nullopt;
+}
+
 }  // namespace genflow::detail

@@ -925,15 +925,17 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         }
     };
 
-    // The refined level drawn towards where the fine map puts it, where the map does not tear
+    // The refined level drawn towards where a fine map puts it, where the map does not tear
     // off small pieces, and flowed again (MatchOptions::map_fits); kept if its heat kernel
     // signatures then agree better with the target's, or its turning functions clearly better,
-    // and the map was not mirrored (detail::keeps_fit()). Each further fit starts from the map
-    // of the level as last fitted and must do clearly better (kMapFitProgress).
+    // and the map was not mirrored (detail::keeps_fit()). ZoomOut finds a map from each of
+    // kFineMapFirstSizes; the fits to them run side by side, and the first kept in that order
+    // is kept (detail::first_kept_fit()). Each further fit starts from the maps of the level as
+    // last fitted and must do clearly better (kMapFitProgress).
     const auto fit_to_map = [&](int l, const detail::FineSpectrum& spectrum, FlowResult& flow,
-                                detail::VertexMap map) {
+                                std::vector<detail::VertexMap> maps) {
         // Every map of the spectrum has as many functions as the first.
-        if (map.functions < 1 || options.map_fits < 1) {
+        if (maps.empty() || maps.front().functions < 1 || options.map_fits < 1) {
             return;
         }
         const Level& level = pyramid[static_cast<std::size_t>(l)];
@@ -944,30 +946,42 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         const auto turning = [&](const Eigen::MatrixX3d& deformed) {
             return shapes == nullptr ? 0.0 : limbs_placed(*shapes, deformed).agreement;
         };
-        detail::FitRating rating{spectral->discrepancy(flow.mesh.V(rows, Eigen::all)),
-                                 turning(flow.mesh.V)};
+        const auto rating_of = [&](const Eigen::MatrixX3d& deformed) {
+            return detail::FitRating{spectral->discrepancy(deformed(rows, Eigen::all)),
+                                     turning(deformed)};
+        };
+        detail::FitRating rating = rating_of(flow.mesh.V);
         for (int fit = 0; fit < options.map_fits && !cancelled; ++fit) {
             if (fit > 0) {
-                map = spectrum.zoomed_out_map(flow.mesh.V);
+                maps = spectrum.zoomed_out_maps(flow.mesh.V);
             }
-            TriangleMesh fitted = flow.mesh;
-            const Eigen::MatrixX3d placement = level.target.V(map.target_vertex, Eigen::all);
-            const Eigen::VectorXd trusted =
-                detail::trusted_vertices(flow.mesh, placement, target_edge, map.resolved_area());
-            fitted.V =
-                detail::fitted_to_map(flow.mesh, placement, kMapFitLength * diagonal, trusted);
-            FlowResult again = flow_level(l, fitted, options.refinement_iterations, best_start,
-                                          options.prior, {}, options.stretch_weight, false);
-            const detail::FitRating fitted_rating{
-                spectral->discrepancy(again.mesh.V(rows, Eigen::all)), turning(again.mesh.V)};
-            if (cancelled ||
-                !detail::keeps_fit(rating, fitted_rating, fit == 0 ? 0 : kMapFitProgress)) {
+            std::vector<FlowResult> fitted(maps.size());
+            std::vector<detail::FitRating> ratings(maps.size());
+            run_side_by_side(maps.size(), [&](std::size_t k) {
+                const detail::VertexMap& map = maps[k];
+                TriangleMesh drawn = flow.mesh;
+                const Eigen::MatrixX3d placement = level.target.V(map.target_vertex, Eigen::all);
+                const Eigen::VectorXd trusted = detail::trusted_vertices(
+                    flow.mesh, placement, target_edge, map.resolved_area());
+                drawn.V =
+                    detail::fitted_to_map(flow.mesh, placement, kMapFitLength * diagonal, trusted);
+                fitted[k] = flow_level(l, drawn, options.refinement_iterations, best_start,
+                                       options.prior, {}, options.stretch_weight, false);
+                ratings[k] = rating_of(fitted[k].mesh.V);
+            });
+            if (cancelled) {
                 return;
             }
+            const std::optional<std::size_t> kept =
+                detail::first_kept_fit(rating, ratings, fit == 0 ? 0 : kMapFitProgress);
+            if (!kept) {
+                return;
+            }
+            FlowResult& again = fitted[*kept];
             again.steps += flow.steps;
             again.energy.front() = flow.energy.front();
             flow = std::move(again);
-            rating = fitted_rating;
+            rating = ratings[*kept];
             ++result.map_fits;
         }
     };
@@ -1040,18 +1054,18 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             TriangleMesh rest = level.template_mesh;
             rest.V = best_start.apply(rest.V);
             spectrum.emplace(rest, level.target);
-            const detail::VertexMap map = spectrum->zoomed_out_map(flow.mesh.V);
+            std::vector<detail::VertexMap> maps = spectrum->zoomed_out_maps(flow.mesh.V);
             if (options.turn_back_parts) {
-                turn_back(l, rest, flow, map);
+                turn_back(l, rest, flow, maps.front());
             }
             if (!cancelled) {
-                fit_to_map(l, *spectrum, flow, map);
+                fit_to_map(l, *spectrum, flow, std::move(maps));
             }
         }
         // Limbs exchanged back are fitted to the fine map again, now from their places.
         if (refined_level && options.swap_limbs && !cancelled && exchange_limbs(l, flow) &&
             spectrum) {
-            fit_to_map(l, *spectrum, flow, spectrum->zoomed_out_map(flow.mesh.V));
+            fit_to_map(l, *spectrum, flow, spectrum->zoomed_out_maps(flow.mesh.V));
         }
         result.levels.push_back(report(flow.mesh, level, flow, seconds_since(clock)));
         tell_stage(l, "done", flow.mesh);

@@ -28,6 +28,13 @@ struct BentLimb {
         return mesh;
     }
 
+    // The right placement slid along the limb by 0.3 in its rest frame (a few faces).
+    [[nodiscard]] Eigen::MatrixX3d slid() const {
+        TriangleMesh moved = rest;
+        moved.V.col(0).array() += 0.3;
+        return bent(moved).V;
+    }
+
     // Mean distance of a placement of the template from the right one.
     [[nodiscard]] double error(const Eigen::MatrixX3d& placement) const {
         return (placement - placed).rowwise().norm().mean();
@@ -40,9 +47,7 @@ struct BentLimb {
 TEST(FineSpectrum, MapFromASlidPlacementPutsTheVerticesBack) {
     const BentLimb limb;
     const detail::FineSpectrum spectrum(limb.rest, limb.target);
-    TriangleMesh slid = limb.rest;
-    slid.V.col(0).array() += 0.3;
-    const Eigen::MatrixX3d slid_placement = BentLimb::bent(slid).V;
+    const Eigen::MatrixX3d slid_placement = limb.slid();
     const detail::VertexMap map = spectrum.zoomed_out_map(slid_placement);
     EXPECT_EQ(map.functions, 60);
     EXPECT_EQ(map.target_vertex.size(), static_cast<std::size_t>(limb.rest.V.rows()));
@@ -53,10 +58,29 @@ TEST(FineSpectrum, MapFromASlidPlacementPutsTheVerticesBack) {
     EXPECT_LT(after, 0.025 * bounding_box_diagonal(limb.target));
 }
 
-TEST(FineSpectrum, RefusesAPlacementOfAnotherSize) {
+// One map from each of kFineMapFirstSizes, in that order, each as zoomed_out_map() finds it
+// from that size, and each putting the slid vertices back.
+TEST(FineSpectrum, MapsFromEachFirstSize) {
+    const BentLimb limb;
+    const detail::FineSpectrum spectrum(limb.rest, limb.target);
+    const Eigen::MatrixX3d slid_placement = limb.slid();
+    const std::vector<detail::VertexMap> maps = spectrum.zoomed_out_maps(slid_placement);
+    ASSERT_EQ(maps.size(), detail::kFineMapFirstSizes.size());
+    for (std::size_t k = 0; k < maps.size(); ++k) {
+        const detail::VertexMap alone =
+            spectrum.zoomed_out_map(slid_placement, detail::kFineMapFirstSizes[k]);
+        EXPECT_EQ(maps[k].target_vertex, alone.target_vertex) << "size " << k;
+        EXPECT_LT(limb.error(limb.target.V(maps[k].target_vertex, Eigen::all)),
+                  0.5 * limb.error(slid_placement))
+            << "size " << k;
+    }
+}
+
+TEST(FineSpectrum, RefusesAPlacementOfAnotherSizeAndNoFirstFunction) {
     const BentLimb limb;
     const detail::FineSpectrum spectrum(limb.rest, limb.target);
     EXPECT_THROW((void)spectrum.zoomed_out_map(limb.placed.topRows(10)), InvalidInput);
+    EXPECT_THROW((void)spectrum.zoomed_out_map(limb.placed, 0), InvalidInput);
 }
 
 }  // namespace

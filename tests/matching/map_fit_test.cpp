@@ -141,5 +141,30 @@ TEST(MapFit, KeepsAFitThatTheSignaturesOrTheTurningFunctionsClearlyPrefer) {
     EXPECT_FALSE(keeps_fit({0.20, 0}, {0.21, 0}, 0));
 }
 
+// Fits of one match to the maps ZoomOut finds from 10 and from 20 functions
+// (kFineMapFirstSizes), with the ratings measured on docs/eval: the first that keeps_fit()
+// keeps wins, whether or not a later one's signatures agree better.
+TEST(MapFit, KeepsTheFirstFitKeptInTheMapsOrder) {
+    using detail::first_kept_fit;
+    // TOSCA michael standing to kneeling: the map from 10 is mirrored, the one from 20 is not.
+    EXPECT_EQ(first_kept_fit({0.2240, 0.330}, {{0.2029, -0.341}, {0.1624, 0.402}}, 0), 1U);
+    // The libigl arm from rest to pose 2 (h1): from 10 the signatures agree worse, from 20 the
+    // turning functions clearly better (0.46 → 0.59 at +8 %).
+    EXPECT_EQ(first_kept_fit({0.1300, 0.459}, {{0.1520, 0.268}, {0.1409, 0.590}}, 0), 1U);
+    // The makehuman hand: both kept, the first wins though the second's signatures agree better.
+    EXPECT_EQ(first_kept_fit({0.1658, 0.106}, {{0.1450, 0.184}, {0.1412, 0.133}}, 0), 0U);
+    // The TOSCA centaur: neither agrees better.
+    EXPECT_EQ(first_kept_fit({0.1279, 0.752}, {{0.1294, 0.742}, {0.1280, 0.740}}, 0), std::nullopt);
+    // A fallback's fit is not kept if the turning agreement falls by more than the noise (the
+    // MakeHuman body pose1→pose3: 0.76 → 0.62 with the signatures 5 % better); the first
+    // map's is judged by keeps_fit() alone.
+    EXPECT_EQ(first_kept_fit({0.1113, 0.759}, {{0.1333, 0.702}, {0.1062, 0.622}}, 0), std::nullopt);
+    EXPECT_EQ(first_kept_fit({0.1113, 0.759}, {{0.1062, 0.622}}, 0), 0U);
+    EXPECT_EQ(first_kept_fit({0.1113, 0.759}, {{0.1333, 0.702}, {0.1062, 0.70}}, 0), 1U);
+    // A further fit must do better by `progress`.
+    EXPECT_EQ(first_kept_fit({0.20, 0.60}, {{0.198, 0.60}, {0.15, 0.60}}, 0.05), 1U);
+    EXPECT_EQ(first_kept_fit({0.20, 0.60}, {}, 0), std::nullopt);
+}
+
 }  // namespace
 }  // namespace genflow

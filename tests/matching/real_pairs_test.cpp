@@ -277,10 +277,11 @@ TEST(RealPairs, KneelingManIsMatchedAtHisSize) {
 // docs/eval/posed_templates.json: every rigid start and the preferred intrinsic start match
 // him front to back (22.6 % mean error, 0.27 disagreement: not doubtful); one of the next
 // landmark sets' starts is right (MatchOptions::alternative_starts, tried because the second
-// opinion was kept), and its result disagrees less (0.24). The fine map is mirrored: fitted to
-// it, he lay on the target inside out (2.7 → 4.6 %), though the signatures agreed better; the
-// turning functions, which fell from 0.33 to −0.34, refuse that fit (detail::keeps_fit()).
-// About two minutes.
+// opinion was kept), and its result disagrees less (0.24). The fine map ZoomOut finds from 10
+// functions is mirrored: fitted to it, he lay on the target inside out (2.7 → 4.6 %), though the
+// signatures agreed better; the turning functions, which fell from 0.33 to −0.34, refuse that
+// fit (detail::keeps_fit()). The map from 20 functions keeps his left and right, and the fit to
+// it is kept (2.7 → 0.9 %; kFineMapFirstSizes). About two minutes.
 TEST(RealPairs, KneelingManFromAnotherPoseGetsAnAlternativeStart) {
     const std::optional<SimplifiedPair> pair = kneeling_pair(1);
     if (!pair) {
@@ -291,8 +292,8 @@ TEST(RealPairs, KneelingManFromAnotherPoseGetsAnAlternativeStart) {
     std::printf("kneeling man from pose 1: mean error %.4f, alternative start %d of %d\n",
                 error.mean, result.alternative_start, result.alternative_starts);
     EXPECT_GE(result.alternative_start, 1);
-    EXPECT_EQ(result.map_fits, 0);
-    EXPECT_LT(error.mean, 0.035);
+    EXPECT_GE(result.map_fits, 1);
+    EXPECT_LT(error.mean, 0.02);
 }
 
 // TOSCA michael from kneeling (pose 2) to standing (pose 0), the target simplified as in
