@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,7 +77,14 @@ double log_sum_exp(const std::vector<double>& values) {
 }
 
 // r^α for 0 < r ≤ 1, by repeated squaring when α is a small integer (the usual 8 or 16).
+// The default α = 8 is spelled out: the loop's shifts and branches cost as much as the products
+// in the innermost sums. It squares as the loop does, so the result is the same to the bit.
 double ratio_power(double r, double alpha, int integer_alpha) {
+    if (integer_alpha == 8) {
+        const double r2 = r * r;
+        const double r4 = r2 * r2;
+        return r4 * r4;
+    }
     if (integer_alpha > 0) {
         double result = 1;
         double base = r;
@@ -103,6 +111,12 @@ struct Side {
     detail::PointGrid grid;        // over `active` (grid ids index `active`)
     RowMatrixXd descriptors;       // per point (PointDescriptors), or no columns
     RowMatrixXd slot_descriptors;  // the same rows in the grid's slot order
+    // |φ − ψ|² of this side's points (rows) against the other side's (columns, see
+    // table_column()), when the energy tabulated them (DescriptorTable); else null.
+    const RowMatrixXd* descriptor_table = nullptr;
+    // Whether the other side's table has a column per grid slot of this side (the target's
+    // slots never change) or per point (the moving side is gridded anew at every evaluation).
+    bool table_columns_by_slot = false;
     // The shells of shell_radius2() about a query: ρ_k = k·shell_step, and 1/(ρ_k² + ε²).
     double shell_step = 1;
     std::vector<double> inverse_shell_d;
@@ -193,6 +207,11 @@ struct Side {
 
     [[nodiscard]] bool has_descriptors() const {
         return descriptors.cols() > 0;
+    }
+
+    // The column of the other side's descriptor table that holds the point at `slot`.
+    [[nodiscard]] Eigen::Index table_column(std::uint32_t slot) const {
+        return table_columns_by_slot ? static_cast<Eigen::Index>(slot) : active[grid.id(slot)];
     }
 
 private:
@@ -292,6 +311,13 @@ double gather_within_radius(const Side& to, const Eigen::Vector3d& x, const Para
 
 // Adds |φ_u − ψ_slot|² (PointDescriptors) to the squared distances in `found`.
 void add_descriptor_distances(const Side& from, const Side& to, Eigen::Index u, Neighbours& found) {
+    if (from.descriptor_table != nullptr) {
+        const double* row = from.descriptor_table->row(u).data();
+        for (std::size_t k = 0; k < found.count; ++k) {
+            found.distances2[k] += row[to.table_column(found.slots[k])];
+        }
+        return;
+    }
     const auto phi = from.descriptors.row(u);
     for (std::size_t k = 0; k < found.count; ++k) {
         found.distances2[k] +=
@@ -525,9 +551,39 @@ void check_descriptors(const PointDescriptors& descriptors, Eigen::Index moving,
 
 }  // namespace
 
+// The descriptors' part of every pair's distance, |φ_u − ψ_j|², which the moving points'
+// motion leaves unchanged: tabulated once per energy when there are at most this many pairs
+// (the coarsest level of a match, whose guided flows take thousands of steps), else computed
+// per pair and evaluation.
+constexpr double kTabulatedPairs = 1 << 20;
+
+struct DescriptorTable {
+    RowMatrixXd by_moving;  // row: moving point u; column: the target point's slot
+    RowMatrixXd by_target;  // row: target point j; column: moving point u
+
+    // The same values add_descriptor_distances() would compute pair by pair, bit for bit.
+    DescriptorTable(const Eigen::MatrixXd& moving_descriptors, const Side& target) {
+        const RowMatrixXd moving = moving_descriptors;
+        const auto slots = static_cast<Eigen::Index>(target.active.size());
+        by_moving.resize(moving.rows(), slots);
+        for (Eigen::Index u = 0; u < moving.rows(); ++u) {
+            const auto phi = moving.row(u);
+            for (Eigen::Index slot = 0; slot < slots; ++slot) {
+                by_moving(u, slot) = (target.slot_descriptors.row(slot) - phi).squaredNorm();
+            }
+        }
+        by_target = RowMatrixXd::Zero(target.points.rows(), moving.rows());
+        for (Eigen::Index slot = 0; slot < slots; ++slot) {
+            const std::uint32_t j = target.active[target.grid.id(static_cast<std::uint32_t>(slot))];
+            by_target.row(j) = by_moving.col(slot).transpose();
+        }
+    }
+};
+
 struct PseudoHausdorffEnergy::Impl {
     Eigen::MatrixXd moving_descriptors;  // no columns without descriptors
     Side target;
+    std::optional<DescriptorTable> table;  // for a moving mesh of moving_descriptors.rows()
     std::mutex cache_mutex;
     Eigen::MatrixX3d cached_V;
     Eigen::MatrixX3i cached_F;
@@ -538,7 +594,15 @@ struct PseudoHausdorffEnergy::Impl {
     Impl(const TriangleMesh& mesh, const PseudoHausdorffOptions& options,
          PointDescriptors descriptors)
         : moving_descriptors(std::move(descriptors.moving)),
-          target(mesh.V, lumped_masses(mesh, MassType::Barycentric), options, descriptors.fixed) {}
+          target(mesh.V, lumped_masses(mesh, MassType::Barycentric), options, descriptors.fixed) {
+        if (target.has_descriptors() && static_cast<double>(moving_descriptors.rows()) *
+                                                static_cast<double>(target.active.size()) <=
+                                            kTabulatedPairs) {
+            table.emplace(moving_descriptors, target);
+            target.descriptor_table = &table->by_target;
+            target.table_columns_by_slot = true;
+        }
+    }
 };
 
 PseudoHausdorffEnergy::PseudoHausdorffEnergy(const TriangleMesh& target,
@@ -674,6 +738,7 @@ PseudoHausdorffEvaluation PseudoHausdorffEnergy::evaluate(const TriangleMesh& me
     Workspace own;
     Workspace& work = lock.owns_lock() ? impl_->workspace : own;
     work.source.assign(mesh.V, masses, options_, descriptors);
+    work.source.descriptor_table = impl_->table ? &impl_->table->by_moving : nullptr;
     if (work.source.active.empty()) {
         throw InvalidInput("PseudoHausdorffEnergy::evaluate: mesh has zero area");
     }

@@ -6,6 +6,7 @@
 
 #include "genflow/exceptions.h"
 #include "matching/functional_map.h"
+#include "matching/side_by_side.h"
 
 namespace genflow::detail {
 
@@ -50,10 +51,11 @@ VertexMap FineSpectrum::zoomed_out_map(const Eigen::MatrixX3d& deformed,
 }
 
 std::vector<VertexMap> FineSpectrum::zoomed_out_maps(const Eigen::MatrixX3d& deformed) const {
-    std::vector<VertexMap> maps;
-    for (const Eigen::Index first_size : kFineMapFirstSizes) {
-        maps.push_back(zoomed_out_map(deformed, first_size));
-    }
+    // Independent, and each too small to keep both cores busy in its matrix products.
+    std::vector<VertexMap> maps(kFineMapFirstSizes.size());
+    run_side_by_side(maps.size(), [&](std::size_t k) {
+        maps[k] = zoomed_out_map(deformed, kFineMapFirstSizes[k]);
+    });
     return maps;
 }
 

@@ -16,9 +16,21 @@ std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from, const Eigen:
         const Eigen::Index rows = std::min(kBlock, from.rows() - begin);
         const Eigen::MatrixXd distance =
             (-2 * from.middleRows(begin, rows) * to.transpose()).rowwise() + to_squared;
-        for (Eigen::Index i = 0; i < rows; ++i) {
-            distance.row(i).minCoeff(&nearest[static_cast<std::size_t>(begin + i)]);
+        // The minima of all rows at once, column by column: the matrix is stored by columns,
+        // and a walk along a row would touch a new cache line at every entry. The first
+        // smallest entry wins, as minCoeff()'s does.
+        Eigen::VectorXd smallest = distance.col(0);
+        std::vector<Eigen::Index> column(static_cast<std::size_t>(rows), 0);
+        for (Eigen::Index j = 1; j < distance.cols(); ++j) {
+            for (Eigen::Index i = 0; i < rows; ++i) {
+                const double d = distance(i, j);
+                if (d < smallest[i]) {
+                    smallest[i] = d;
+                    column[static_cast<std::size_t>(i)] = j;
+                }
+            }
         }
+        std::copy(column.begin(), column.end(), nearest.begin() + begin);
     }
     return nearest;
 }

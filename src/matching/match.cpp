@@ -5,10 +5,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <numeric>
 #include <optional>
 #include <utility>
@@ -25,6 +23,7 @@
 #include "matching/fine_spectrum.h"
 #include "matching/intrinsic_start.h"
 #include "matching/map_fit.h"
+#include "matching/side_by_side.h"
 #include "matching/spectral_descriptors.h"
 #include "matching/swapped_limbs.h"
 #include "matching/turned_parts.h"
@@ -250,31 +249,6 @@ Embedding moved_embedding(const Embedding& embedding, const Similarity& similari
     return moved;
 }
 
-// Runs task(k) for every k < count on the OpenMP threads, one task per thread at a time: the
-// flows of the coarsest level are too small to split, but those from different starts or at
-// different stiffnesses are independent. The first exception a task threw is rethrown. A
-// single task runs on the calling thread, so that tasks it runs side by side in turn still do
-// (a nested parallel region runs on one thread).
-template <class Task>
-void run_side_by_side(std::size_t count, const Task& task) {
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
-    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(count); ++k) {
-        try {
-            task(static_cast<std::size_t>(k));
-        } catch (...) {
-            const std::lock_guard<std::mutex> lock(failure_mutex);
-            if (!failure) {
-                failure = std::current_exception();
-            }
-        }
-    }
-    if (failure) {
-        std::rethrow_exception(failure);
-    }
-}
-
 // Of flows run side by side, the one whose result `rate` rates lowest, its rating, and the
 // steps of them all. Once cancelled, the first (the one that reported): the others may have
 // stopped anywhere.
@@ -493,7 +467,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     std::vector<FlowResult> selection_flows;  // one per start, with several starts
     if (several_starts) {
         selection_flows.resize(starts.size());
-        run_side_by_side(starts.size(), [&](std::size_t k) {
+        detail::run_side_by_side(starts.size(), [&](std::size_t k) {
             selection_flows[k] = flow_level(count - 1, placed(starts[k]), selection_steps,
                                             starts[k], MatchPrior::H1, {}, 0, k == 0);
         });
@@ -559,7 +533,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                             return options.stretch_weight *
                                    std::pow(4.0, static_cast<double>(t % stiffnesses));
                         };
-                        run_side_by_side(flows.size(), [&](std::size_t t) {
+                        detail::run_side_by_side(flows.size(), [&](std::size_t t) {
                             flows[t] = guided_then_plain(guidances[t / stiffnesses].first,
                                                          weight(t), reports && t == 0);
                             if (t % stiffnesses > 0 && !cancelled) {
@@ -675,7 +649,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         // rounds each, side by side (their stiffness candidates then one after the other); the
         // one that ends agreeing best is kept (MatchOptions::contenders).
         std::vector<GuidedMatch> outcomes(contenders.size());
-        run_side_by_side(contenders.size(), [&](std::size_t k) {
+        detail::run_side_by_side(contenders.size(), [&](std::size_t k) {
             outcomes[k] = guided_match(contenders[k], k == 0, placement_of(k));
         });
         // The turning functions' agreement of outcome k with the target (swapped_limbs.h), once
@@ -736,7 +710,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 contenders.push_back(starts.size() - 1);
             }
             outcomes.resize(contenders.size());
-            run_side_by_side(intrinsic.size() - 1, [&](std::size_t k) {
+            detail::run_side_by_side(intrinsic.size() - 1, [&](std::size_t k) {
                 outcomes[first + k] = guided_match(contenders[first + k], k == 0,
                                                    placement_of(rigid_contenders + 1 + k));
             });
@@ -875,7 +849,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         // Flow k > 0 is guided at eigenfunction_guidance × 2^(1-k): 1, 1/2, ...
         const auto factor = [](std::size_t k) { return std::ldexp(1.0, 1 - static_cast<int>(k)); };
         std::vector<FlowResult> flows(static_cast<std::size_t>(options.refinement_guidances) + 1);
-        run_side_by_side(flows.size(), [&](std::size_t k) {
+        detail::run_side_by_side(flows.size(), [&](std::size_t k) {
             if (k == 0) {
                 flows[k] = flow_level(l, moved, options.fine_iterations, best_start, options.prior);
                 return;
@@ -957,7 +931,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             }
             std::vector<FlowResult> fitted(maps.size());
             std::vector<detail::FitRating> ratings(maps.size());
-            run_side_by_side(maps.size(), [&](std::size_t k) {
+            detail::run_side_by_side(maps.size(), [&](std::size_t k) {
                 const detail::VertexMap& map = maps[k];
                 TriangleMesh drawn = flow.mesh;
                 const Eigen::MatrixX3d placement = level.target.V(map.target_vertex, Eigen::all);

@@ -387,6 +387,34 @@ TEST(PseudoHausdorffDescriptors, EqualDescriptorsChangeNothing) {
     EXPECT_LT(test::relative_error(b.differential, a.differential), 1e-14);
 }
 
+// The energy tabulates the descriptors' part of every pair's distance once (small sets, as a
+// match's coarsest level); pseudo_hausdorff() computes it per pair. Both must give the same
+// numbers to the bit, or a match would depend on which path its level took.
+TEST(PseudoHausdorffDescriptors, TabulatedAndPerPairDistancesAgreeToTheBit) {
+    const Pair pair = small_pair();
+    const PointDescriptors descriptors = descriptors_of(pair);
+    const Eigen::VectorXd my = lumped_masses(pair.Y, MassType::Barycentric);
+    TriangleMesh moved = pair.X;
+    moved.V.col(0) *= 1.3;  // another placement than the one the energy was first asked of
+    for (const double alpha : {3.0, 8.0}) {
+        for (const double truncation : {0.0, 1e-2}) {
+            const PseudoHausdorffOptions options{
+                .alpha = alpha, .epsilon = 0.03, .truncation = truncation};
+            const PseudoHausdorffEnergy energy(pair.Y, options, descriptors);
+            for (const TriangleMesh* mesh : {&pair.X, static_cast<const TriangleMesh*>(&moved)}) {
+                const Eigen::VectorXd mx = lumped_masses(*mesh, MassType::Barycentric);
+                const auto tabulated = energy.evaluate(*mesh);
+                const auto per_pair =
+                    pseudo_hausdorff(mesh->V, mx, pair.Y.V, my, options, descriptors);
+                EXPECT_EQ(tabulated.value, per_pair.value) << alpha << " " << truncation;
+                EXPECT_EQ(tabulated.pairs, per_pair.pairs);
+                EXPECT_TRUE(tabulated.differential == per_pair.differential)
+                    << alpha << " " << truncation;
+            }
+        }
+    }
+}
+
 TEST(PseudoHausdorffDescriptors, PullEachPointTowardsTheAlikeOfTwoEquallyNearOnes) {
     // Two moving points midway between two fixed ones, the first alike the one at −x, the
     // second alike the one at +x. Without descriptors the mirror symmetry leaves no pull along x.

@@ -3,11 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <numbers>
 
 #include "genflow/exceptions.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/operators/mesh_size.h"
+#include "matching/functional_map.h"
 
 namespace genflow {
 namespace {
@@ -81,6 +83,35 @@ TEST(FineSpectrum, RefusesAPlacementOfAnotherSizeAndNoFirstFunction) {
     const detail::FineSpectrum spectrum(limb.rest, limb.target);
     EXPECT_THROW((void)spectrum.zoomed_out_map(limb.placed.topRows(10)), InvalidInput);
     EXPECT_THROW((void)spectrum.zoomed_out_map(limb.placed, 0), InvalidInput);
+}
+
+// Rows of small integers make every distance exact, so that ties are real: the nearest row is
+// the first of the closest, as a scan finds it. 2100 rows cross the blocks nearest_rows() works in.
+TEST(FunctionalMap, NearestRowsAreTheFirstClosest) {
+    std::srand(7);
+    const auto small_integers = [](Eigen::Index rows) {
+        return Eigen::MatrixXd(Eigen::MatrixXd::NullaryExpr(
+            rows, 4, [] { return static_cast<double>(std::rand() % 7 - 3); }));
+    };
+    const Eigen::MatrixXd from = small_integers(2100);
+    const Eigen::MatrixXd to = small_integers(300);
+    const std::vector<Eigen::Index> nearest = detail::nearest_rows(from, to);
+    ASSERT_EQ(nearest.size(), 2100U);
+    int ties = 0;
+    for (Eigen::Index i = 0; i < from.rows(); ++i) {
+        Eigen::Index first_closest = 0;
+        double closest = (from.row(i) - to.row(0)).squaredNorm();
+        for (Eigen::Index j = 1; j < to.rows(); ++j) {
+            const double d = (from.row(i) - to.row(j)).squaredNorm();
+            ties += d == closest ? 1 : 0;
+            if (d < closest) {
+                closest = d;
+                first_closest = j;
+            }
+        }
+        EXPECT_EQ(nearest[static_cast<std::size_t>(i)], first_closest) << i;
+    }
+    EXPECT_GT(ties, 100);  // the tie rule was tested
 }
 
 }  // namespace
