@@ -18,14 +18,40 @@ FineSpectrum::FineSpectrum(const TriangleMesh& template_rest, const TriangleMesh
 
 VertexMap FineSpectrum::zoomed_out_map(const Eigen::MatrixX3d& deformed,
                                        Eigen::Index first_size) const {
-    if (first_size < 1) {
-        throw InvalidInput("zoomed_out_map: ZoomOut must start from at least one function, not " +
-                           std::to_string(first_size));
-    }
+    return zoomed_out_from(nearest_target_vertices(deformed), first_size);
+}
+
+std::vector<VertexMap> FineSpectrum::zoomed_out_maps(const Eigen::MatrixX3d& deformed) const {
+    // Every ZoomOut starts from the same correspondence. They are independent, and each too
+    // small to keep both cores busy in its matrix products.
+    const std::vector<Eigen::Index> correspondence = nearest_target_vertices(deformed);
+    std::vector<VertexMap> maps(kFineMapFirstSizes.size());
+    run_side_by_side(maps.size(), [&](std::size_t k) {
+        maps[k] = zoomed_out_from(correspondence, kFineMapFirstSizes[k]);
+    });
+    return maps;
+}
+
+std::vector<Eigen::Index> FineSpectrum::nearest_target_vertices(
+    const Eigen::MatrixX3d& deformed) const {
     if (deformed.rows() != template_basis_.functions.rows()) {
         throw InvalidInput("zoomed_out_map: the deformed template has " +
                            std::to_string(deformed.rows()) + " vertices, not " +
                            std::to_string(template_basis_.functions.rows()));
+    }
+    std::vector<Eigen::Index> correspondence(static_cast<std::size_t>(deformed.rows()));
+    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
+        correspondence[static_cast<std::size_t>(i)] =
+            target_points_.nearest(deformed.row(i).transpose()).first;
+    }
+    return correspondence;
+}
+
+VertexMap FineSpectrum::zoomed_out_from(std::vector<Eigen::Index> correspondence,
+                                        Eigen::Index first_size) const {
+    if (first_size < 1) {
+        throw InvalidInput("zoomed_out_map: ZoomOut must start from at least one function, not " +
+                           std::to_string(first_size));
     }
     VertexMap map;
     map.template_masses = template_basis_.masses;
@@ -35,11 +61,6 @@ VertexMap FineSpectrum::zoomed_out_map(const Eigen::MatrixX3d& deformed,
         map.functions = 0;
         return map;
     }
-    std::vector<Eigen::Index> correspondence(static_cast<std::size_t>(deformed.rows()));
-    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
-        correspondence[static_cast<std::size_t>(i)] =
-            target_points_.nearest(deformed.row(i).transpose()).first;
-    }
     const auto count = map.functions;
     constexpr Eigen::Index kStep = 5;
     map.target_vertex =
@@ -48,15 +69,6 @@ VertexMap FineSpectrum::zoomed_out_map(const Eigen::MatrixX3d& deformed,
                  embedding_weights(target_basis_.values.segment(1, count)),
                  std::move(correspondence), first_size, count, kStep);
     return map;
-}
-
-std::vector<VertexMap> FineSpectrum::zoomed_out_maps(const Eigen::MatrixX3d& deformed) const {
-    // Independent, and each too small to keep both cores busy in its matrix products.
-    std::vector<VertexMap> maps(kFineMapFirstSizes.size());
-    run_side_by_side(maps.size(), [&](std::size_t k) {
-        maps[k] = zoomed_out_map(deformed, kFineMapFirstSizes[k]);
-    });
-    return maps;
 }
 
 }  // namespace genflow::detail

@@ -57,6 +57,13 @@ public:
     [[nodiscard]] std::vector<VertexMap> zoomed_out_maps(const Eigen::MatrixX3d& deformed) const;
 
 private:
+    // Each template vertex's target vertex nearest to where `deformed` puts it.
+    [[nodiscard]] std::vector<Eigen::Index> nearest_target_vertices(
+        const Eigen::MatrixX3d& deformed) const;
+    // ZoomOut from `correspondence` seen through `first_size` functions.
+    [[nodiscard]] VertexMap zoomed_out_from(std::vector<Eigen::Index> correspondence,
+                                            Eigen::Index first_size) const;
+
     LaplacianEigenbasis template_basis_;
     LaplacianEigenbasis target_basis_;
     PointIndex target_points_;

@@ -23,10 +23,11 @@ namespace genflow::detail {
 /// outside a team keeps both threads for it.
 template <class Task>
 void run_side_by_side(std::size_t count, const Task& task) {
-    if (count <= 1) {
-        if (count == 1) {
-            task(0);
-        }
+    if (count == 0) {
+        return;
+    }
+    if (count == 1) {
+        task(0);
         return;
     }
     std::exception_ptr failure;
