@@ -2,7 +2,8 @@
 // Time per implicit-fairing step on the 48K-vertex horse ($GENFLOW_DATA/smoothing/horse_noisy.ply,
 // or a generated 50K-vertex torus without the data): the first step (symbolic analysis +
 // factorization + solve) and later steps separately, through the library (whichever backend it
-// was built with) and with CHOLMOD and Eigen's SimplicialLDLT side by side. Also the rebuild of
+// was built with) and with CHOLMOD and Eigen's SimplicialLDLT side by side; one H1 step at the
+// size of a match's coarsest level. Also the rebuild of
 // the quasi-articulated metric (SPEC.md §6) at every flow step, on a generated 41K-vertex sphere
 // cut into a chain of 17 parts.
 #include <benchmark/benchmark.h>
@@ -157,10 +158,24 @@ void BM_ArticulatedMetricUpdate(benchmark::State& state) {
     }
 }
 
+// One H1 metric update and gradient at the size of a match's coarsest level (a 642-vertex
+// icosphere; the TOSCA cat's is 471), which its flows pay at every step, thousands of steps.
+void BM_H1StepCoarse(benchmark::State& state) {
+    const genflow::TriangleMesh mesh = genflow::make_icosphere(3);
+    const double h = genflow::mean_edge_length(mesh);
+    genflow::H1Metric metric({.lambda = h * h});
+    metric.update(mesh);
+    for (auto _ : state) {
+        metric.update(mesh);
+        benchmark::DoNotOptimize(metric.gradient(mesh.V));
+    }
+}
+
 BENCHMARK(BM_FairingStepFirst)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingStepLater)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingAssembleOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_VolumeFairingStep)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_H1StepCoarse)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ArticulatedMetricUpdate)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EigenLDLT)->ArgName("phase")->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 #ifdef GENFLOW_BENCH_HAS_CHOLMOD

@@ -2,24 +2,48 @@
 #include "genflow/metrics/sobolev_metric.h"
 
 #include <cmath>
+#include <mutex>
+#include <optional>
 
 #include "genflow/exceptions.h"
 #include "genflow/operators/cotan_stiffness.h"
 #include "metrics/metric_support.h"
+#include "operators/stiffness_pattern.h"
 #include "operators/triangle.h"
 
 namespace genflow {
 
-H1Metric::H1Metric(SobolevOptions options) : options_(options) {
+struct H1Metric::PatternCache {
+    std::mutex mutex;  // assemble() is const
+    std::optional<detail::StiffnessPattern> pattern;
+};
+
+H1Metric::H1Metric(SobolevOptions options)
+    : options_(options), pattern_cache_(std::make_unique<PatternCache>()) {
     if (!detail::finite_above(options_.lambda, 0)) {
         throw InvalidInput("H1Metric: lambda must be positive and finite, got " +
                            std::to_string(options_.lambda));
     }
 }
 
+H1Metric::~H1Metric() = default;
+H1Metric::H1Metric(H1Metric&&) noexcept = default;
+H1Metric& H1Metric::operator=(H1Metric&&) noexcept = default;
+
 Eigen::SparseMatrix<double> H1Metric::assemble(const TriangleMesh& mesh) const {
-    return detail::floored_mass_matrix(mesh, options_.mass) +
-           options_.lambda * cotan_stiffness(mesh);
+    if (options_.mass == MassType::Full || !pattern_cache_) {  // !pattern_cache_: moved from
+        return detail::floored_mass_matrix(mesh, options_.mass) +
+               options_.lambda * cotan_stiffness(mesh);
+    }
+    // The same matrix to the bit (StiffnessPattern), without sorting its entries again.
+    const std::lock_guard lock(pattern_cache_->mutex);
+    std::optional<detail::StiffnessPattern>& pattern = pattern_cache_->pattern;
+    if (!pattern || !pattern->fits(mesh)) {
+        detail::require_valid_mesh(mesh, "H1Metric");  // a mesh that fits has valid indices
+        pattern.emplace(mesh);
+    }
+    return pattern->diagonal_plus_stiffness(
+        mesh, detail::floored_lumped_masses(mesh, options_.mass), options_.lambda);
 }
 
 H2Metric::H2Metric(SobolevOptions options) : options_(options) {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <memory>
+
 #include "genflow/metrics/sparse_metric.h"
 #include "genflow/operators/mass_matrix.h"
 
@@ -34,11 +36,19 @@ public:
     explicit H1Metric(SobolevOptions options = {});
     [[nodiscard]] const SobolevOptions& options() const { return options_; }
 
+    ~H1Metric() override;
+    H1Metric(H1Metric&&) noexcept;
+    H1Metric& operator=(H1Metric&&) noexcept;
+
 protected:
     [[nodiscard]] Eigen::SparseMatrix<double> assemble(const TriangleMesh& mesh) const override;
 
 private:
     SobolevOptions options_;
+    // The sparsity pattern of the last connectivity assembled (lumped masses only), reused
+    // while the faces stay the same, as they do in a flow.
+    struct PatternCache;
+    std::unique_ptr<PatternCache> pattern_cache_;
 };
 
 /// The Sobolev H2 metric, L = Id − λΔ + μΔ² (paper §4, SPEC.md §3):

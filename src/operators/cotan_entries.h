@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: MIT
+// The entries of the cotan stiffness matrix, face by face, in the one order that both
+// cotan_stiffness() and StiffnessPattern sum them in: the two must agree to the bit.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "genflow/mesh.h"
+#include "genflow/operators/cotan_stiffness.h"
+#include "operators/triangle.h"
+
+namespace genflow::detail {
+
+/// Entries per face that for_each_cotan_entry() emits.
+constexpr int kCotanEntriesPerFace = 12;
+
+/// Calls entry(row, column, value) for the 12 entries of each face of `mesh` in turn (faces
+/// in order): per corner k, the edge (k+1, k+2) opposite it gives −w at (i, j) and (j, i) and
+/// +w at (i, i) and (j, j), w = ½ cot of the angle at k (bounded as CotanOptions says). A
+/// degenerate face emits zeros, so the pattern depends on F alone. Expects a valid mesh.
+template <typename Entry>
+void for_each_cotan_entry(const TriangleMesh& mesh, const CotanOptions& options, Entry&& entry) {
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        const Triangle t(mesh, f);
+        const Eigen::Vector3d cots =
+            t.degenerate() ? Eigen::Vector3d::Zero() : t.bounded_cots(options.max_cotangent);
+        for (int k = 0; k < 3; ++k) {
+            const double w = 0.5 * cots[k];
+            const int i = mesh.F(f, (k + 1) % 3);
+            const int j = mesh.F(f, (k + 2) % 3);
+            entry(i, j, -w);
+            entry(j, i, -w);
+            entry(i, i, w);
+            entry(j, j, w);
+        }
+    }
+}
+
+}  // namespace genflow::detail
