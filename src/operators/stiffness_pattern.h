@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The sparsity pattern of D + λK (D diagonal, K the cotan stiffness) for one connectivity, so
 // that a flow which re-assembles the H1 metric at every step (the same faces, moved vertices)
-// writes values into fixed slots instead of sorting 12 triplets per face: sorting was about
-// 40 % of an H1 metric's update() on a match's coarsest level.
+// writes values into fixed slots instead of sorting 12 triplets per face. Assembled from
+// triplets, M + λK took about 40 % of an H1 metric's update() at the size of a match's
+// coarsest level (bench/flow_bench, 642 vertices: 239 of 619 µs); one H1 step went 683 →
+// 554 µs with this.
 #pragma once
 
 #include <Eigen/SparseCore>
