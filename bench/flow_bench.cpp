@@ -137,9 +137,10 @@ void BM_Cholmod(benchmark::State& state) {
 }  // namespace
 
 // The quasi-articulated metric's update() (its block Gram–Schmidt) and one gradient, on a
-// 41K-vertex sphere cut along x into a chain of 17 parts (17 hand parts' worth of fields).
+// sphere cut along x into a chain of 17 parts (17 hand parts' worth of fields): 642 vertices
+// (argument 3, about a match's coarsest level, whose flows pay it at every step) and 41K (6).
 void BM_ArticulatedMetricUpdate(benchmark::State& state) {
-    const genflow::TriangleMesh mesh = genflow::make_icosphere(6);
+    const genflow::TriangleMesh mesh = genflow::make_icosphere(static_cast<int>(state.range(0)));
     constexpr int kParts = 17;
     Eigen::VectorXi labels(mesh.V.rows());
     for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
@@ -176,7 +177,7 @@ BENCHMARK(BM_FairingStepLater)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingAssembleOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_VolumeFairingStep)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_H1StepCoarse)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_ArticulatedMetricUpdate)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ArticulatedMetricUpdate)->Arg(3)->Arg(6)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EigenLDLT)->ArgName("phase")->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 #ifdef GENFLOW_BENCH_HAS_CHOLMOD
 BENCHMARK(BM_Cholmod)->ArgName("phase")->DenseRange(0, 2)->Unit(benchmark::kMillisecond);

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <thread>
 
 #include "genflow/energies/enclosed_volume_energy.h"
@@ -19,6 +20,7 @@
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/match.h"
 #include "genflow/matching/multiresolution.h"
+#include "genflow/matching/part_model.h"
 #include "genflow/mesh/edges.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/mesh/validate.h"
@@ -374,6 +376,48 @@ INSTANTIATE_TEST_SUITE_P(ArticulatedPrior, ArticulatedPriorOfTreeAndForest, ::te
                          [](const ::testing::TestParamInfo<bool>& forest) {
                              return forest.param ? "Forest" : "Tree";
                          });
+
+// A chain of 17 parts along a sphere (as bench/flow_bench's BM_ArticulatedMetricUpdate): each
+// limb's fields nearly repeat its parent's over the subtree they share, and the blended
+// weights reach everywhere, so the Gram matrix of all 55 fields is far from diagonal. The
+// Gram–Schmidt on it still gives M-orthonormal blocks, to 3e-10 (it runs on the Gram matrix,
+// whose rounding the nearly repeated fields magnify), and gradient() inverts apply().
+TEST(ArticulatedPrior, DeepChainKeepsOrthonormalBlocks) {
+    const TriangleMesh sphere = make_icosphere(3);
+    constexpr int kParts = 17;
+    Eigen::VectorXi labels(sphere.V.rows());
+    PartModel chain;
+    for (int k = 0; k < kParts; ++k) {
+        chain.parts.push_back(
+            {"part" + std::to_string(k), k - 1, Eigen::Vector3d(-1 + 2.0 * k / kParts, 0, 0)});
+    }
+    for (Eigen::Index i = 0; i < sphere.V.rows(); ++i) {
+        labels[i] = std::min(kParts - 1, static_cast<int>((sphere.V(i, 0) + 1) / 2 * kParts));
+    }
+    chain.weights = weights_from_labels(labels, kParts);
+    SubspaceMetric metric = quasi_articulated_metric(sphere, chain);
+    metric.update(sphere);
+    const std::vector<FieldBlock> blocks = metric.orthonormal_blocks();
+    Eigen::Index columns = 0;
+    for (const FieldBlock& block : blocks) {
+        columns += block.fields.cols();
+    }
+    EXPECT_EQ(columns, 7 + 3 * (kParts - 1));  // the rigid motions and three turns per joint
+    Eigen::MatrixXd Q(3 * sphere.V.rows(), columns);
+    Eigen::Index column = 0;
+    for (const FieldBlock& block : blocks) {
+        Q.middleCols(column, block.fields.cols()) = block.fields;
+        column += block.fields.cols();
+    }
+    Eigen::MatrixXd MQ = Q;
+    for (Eigen::Index i = 0; i < sphere.V.rows(); ++i) {
+        MQ.middleRows(3 * i, 3) *= metric.masses()[i];
+    }
+    EXPECT_LT((Q.transpose() * MQ - Eigen::MatrixXd::Identity(columns, columns)).norm(), 1e-9);
+    const VertexField U = test::noisy_icosphere(3, 0.3, 4).V;
+    EXPECT_LT(test::relative_error(metric.gradient(metric.apply(U)), U), 1e-10);
+    EXPECT_LT(test::relative_error(metric.apply(metric.gradient(U)), U), 1e-10);
+}
 
 // With smoothing_length the residual is measured in H1: the part of a rough differential that
 // no part motion explains moves smoothly, and the bend stays cheap.

@@ -44,7 +44,8 @@ struct SubspaceOptions {
 /// Q_k Q_kᵀ M) the residual is free to move each vertex alone, as L2 does; with a Sobolev base
 /// (the `base` constructor argument, e.g. H1Metric) it moves smoothly. The blocks are rebuilt
 /// from the current positions at every `update()`; applying G or G⁻¹ costs O(n·m) plus one
-/// application of B or B⁻¹, the rebuild O(n·m²) plus m applications of B, for m fields in all.
+/// application of B or B⁻¹, the rebuild O(n·m²) plus m applications of B, for m fields in all:
+/// one Gram matrix Fᵀ B F of all the fields F, on which the Gram–Schmidt runs (Q_k = F T_k).
 ///
 /// The implicit step (`shifted_gradient`) supports a diagonal A (the pseudo-Hausdorff
 /// linearization): G + dt·A = E + U Γ Uᵀ with E = B + dt·A, U = [B Q_k] and Γ = diag(μ_k − 1),
@@ -84,9 +85,19 @@ private:
     SubspaceOptions options_;
     std::unique_ptr<Metric> base_;  // null: B = M
     Eigen::VectorXd masses_;
-    Eigen::VectorXd row_masses_;                // m_i for each of the 3n rows
-    std::vector<FieldBlock> blocks_;            // Q_k, B-orthonormal
-    std::vector<Eigen::MatrixXd> base_blocks_;  // B Q_k
+    Eigen::VectorXd row_masses_;  // m_i for each of the 3n rows
+    // The fields of the last update() side by side, F (3n×m), and B F.
+    Eigen::MatrixXd fields_;
+    Eigen::MatrixXd base_fields_;
+    // Q_k = F T_k, B-orthonormal, and μ_k; T_k has a row for each column of F up to block
+    // k's last (the rest of T_k is zero).
+    struct CoefficientBlock {
+        Eigen::MatrixXd T;
+        double penalty;
+    };
+    std::vector<CoefficientBlock> coefficients_;
+    Eigen::MatrixXd gradient_weights_;  // Σ (1/μ_k − 1) T_k T_kᵀ
+    Eigen::MatrixXd apply_weights_;     // Σ (μ_k − 1) T_k T_kᵀ
 };
 
 /// Penalties of the quasi-rigid prior (paper §6.3.1): each in (0, 1], smaller = that motion is
