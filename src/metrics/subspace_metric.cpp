@@ -67,6 +67,9 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
             throw InvalidInput("SubspaceMetric::update: fixed vertices are not supported");
         }
     }
+    // Until this update has ended the metric has no vertices, and refuses every field: one
+    // that threw half-way must not pair the fields of one update with the weights of another.
+    masses_.resize(0);
     Eigen::VectorXd masses = detail::floored_lumped_masses(mesh, options_.mass);
     const std::vector<FieldBlock> blocks = basis_(mesh, masses);
     Eigen::Index columns = 0;
@@ -86,26 +89,25 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
         base_->update(mesh);
     }
     row_masses_ = row_masses(masses);
-    masses_ = std::move(masses);
 
     // All fields side by side, F = [F_1 … F_K], and their Gram matrix C = Fᵀ B F.
-    fields_.resize(3 * mesh.V.rows(), columns);
+    Eigen::MatrixXd fields(3 * mesh.V.rows(), columns);
     std::vector<Eigen::Index> first_column;
     Eigen::Index column = 0;
     for (const FieldBlock& block : blocks) {
         first_column.push_back(column);
-        fields_.middleCols(column, block.fields.cols()) = block.fields;
+        fields.middleCols(column, block.fields.cols()) = block.fields;
         column += block.fields.cols();
     }
-    base_fields_ = base_times(fields_);
+    Eigen::MatrixXd base_fields = base_times(fields);
     // C = Fᵀ B F: for B = M, half of it as (M^½ F)ᵀ (M^½ F), a symmetric rank update.
     Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(columns, columns);
     if (!base_) {
-        const Eigen::MatrixXd scaled = fields_.array().colwise() * row_masses_.array().sqrt();
+        const Eigen::MatrixXd scaled = fields.array().colwise() * row_masses_.array().sqrt();
         gram.selfadjointView<Eigen::Lower>().rankUpdate(scaled.transpose());
         gram.triangularView<Eigen::StrictlyUpper>() = gram.transpose();
     } else {
-        gram.noalias() = fields_.transpose() * base_fields_;
+        gram.noalias() = fields.transpose() * base_fields;
         gram = (gram + gram.transpose()) / 2;
     }
 
@@ -118,7 +120,7 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
     // fields) spent 65 % of its match there, 50.9 s in all against 24.9 s now. C's rounding,
     // magnified by nearly repeated fields, leaves the blocks of a 17-part chain orthonormal to
     // 3e-10 (tests/matching/matching_test.cpp).
-    coefficients_.clear();
+    std::vector<CoefficientBlock> coefficients;
     for (std::size_t b = 0; b < blocks.size(); ++b) {
         const Eigen::Index width = blocks[b].fields.cols();
         if (width == 0) {
@@ -137,7 +139,7 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
         Eigen::MatrixXd S = Eigen::MatrixXd::Zero(end, width);
         S.bottomRows(width).setIdentity();
         for (int pass = 0; pass < 2; ++pass) {
-            for (const CoefficientBlock& earlier : coefficients_) {
+            for (const CoefficientBlock& earlier : coefficients) {
                 const Eigen::Index rows = earlier.T.rows();
                 const Eigen::MatrixXd components =
                     earlier.T.transpose() * (gram.block(0, 0, rows, end) * S);
@@ -161,18 +163,24 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
             directions.col(static_cast<Eigen::Index>(c)) =
                 eigen.eigenvectors().col(kept[c]) / std::sqrt(eigen.eigenvalues()[kept[c]]);
         }
-        coefficients_.push_back({S * directions, blocks[b].penalty});
+        coefficients.push_back({S * directions, blocks[b].penalty});
     }
     // G⁻¹ and G as F W Fᵀ and BF W' (BF)ᵀ corrections: W = Σ (1/μ_k − 1) T_k T_kᵀ and
     // W' = Σ (μ_k − 1) T_k T_kᵀ, m×m.
-    gradient_weights_ = Eigen::MatrixXd::Zero(columns, columns);
-    apply_weights_ = Eigen::MatrixXd::Zero(columns, columns);
-    for (const CoefficientBlock& block : coefficients_) {
+    Eigen::MatrixXd gradient_weights = Eigen::MatrixXd::Zero(columns, columns);
+    Eigen::MatrixXd apply_weights = Eigen::MatrixXd::Zero(columns, columns);
+    for (const CoefficientBlock& block : coefficients) {
         const Eigen::Index rows = block.T.rows();
         const Eigen::MatrixXd outer = block.T * block.T.transpose();
-        gradient_weights_.topLeftCorner(rows, rows) += (1 / block.penalty - 1) * outer;
-        apply_weights_.topLeftCorner(rows, rows) += (block.penalty - 1) * outer;
+        gradient_weights.topLeftCorner(rows, rows) += (1 / block.penalty - 1) * outer;
+        apply_weights.topLeftCorner(rows, rows) += (block.penalty - 1) * outer;
     }
+    fields_ = std::move(fields);
+    base_fields_ = std::move(base_fields);
+    coefficients_ = std::move(coefficients);
+    gradient_weights_ = std::move(gradient_weights);
+    apply_weights_ = std::move(apply_weights);
+    masses_ = std::move(masses);
 }
 
 std::vector<FieldBlock> SubspaceMetric::orthonormal_blocks() const {

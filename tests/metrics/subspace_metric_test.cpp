@@ -8,6 +8,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <memory>
+#include <vector>
 
 #include "genflow/energies/pseudo_hausdorff_energy.h"
 #include "genflow/exceptions.h"
@@ -253,6 +255,18 @@ TEST(SubspaceMetric, RejectsBadInput) {
     Eigen::SparseMatrix<double> offdiagonal(mesh.V.rows(), mesh.V.rows());
     offdiagonal.insert(0, 1) = 1;
     EXPECT_THROW((void)metric.shifted_gradient(offdiagonal, 1, mesh.V), InvalidInput);
+
+    // An update that throws leaves no metric of the one before: it refuses every field.
+    auto calls = std::make_shared<int>(0);
+    SubspaceMetric fails_later([calls](const TriangleMesh& m, const Eigen::VectorXd&) {
+        const Eigen::Index rows = ++*calls == 1 ? 3 * m.V.rows() : 5;
+        return std::vector<FieldBlock>{{Eigen::MatrixXd::Ones(rows, 1), 0.1}};
+    });
+    fails_later.update(mesh);
+    EXPECT_NO_THROW((void)fails_later.gradient(mesh.V));
+    EXPECT_THROW(fails_later.update(mesh), InvalidInput);
+    EXPECT_THROW((void)fails_later.gradient(mesh.V), InvalidInput);
+    EXPECT_THROW((void)fails_later.apply(mesh.V), InvalidInput);
 }
 
 }  // namespace
