@@ -99,7 +99,6 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
         fields.middleCols(column, block.fields.cols()) = block.fields;
         column += block.fields.cols();
     }
-    Eigen::MatrixXd base_fields = base_times(fields);
     // C = Fᵀ B F: for B = M, half of it as (M^½ F)ᵀ (M^½ F), a symmetric rank update.
     Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(columns, columns);
     if (!base_) {
@@ -107,7 +106,7 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
         gram.selfadjointView<Eigen::Lower>().rankUpdate(scaled.transpose());
         gram.triangularView<Eigen::StrictlyUpper>() = gram.transpose();
     } else {
-        gram.noalias() = fields.transpose() * base_fields;
+        gram.noalias() = fields.transpose() * base_times(fields);
         gram = (gram + gram.transpose()) / 2;
     }
 
@@ -176,7 +175,6 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
         apply_weights.topLeftCorner(rows, rows) += (block.penalty - 1) * outer;
     }
     fields_ = std::move(fields);
-    base_fields_ = std::move(base_fields);
     coefficients_ = std::move(coefficients);
     gradient_weights_ = std::move(gradient_weights);
     apply_weights_ = std::move(apply_weights);
@@ -205,14 +203,15 @@ VertexField SubspaceMetric::gradient(const VertexField& dEdX) const {
 
 VertexField SubspaceMetric::apply(const VertexField& U) const {
     detail::require_rows(U, masses_.size(), "SubspaceMetric::apply");
-    // G u = B u + Σ (μ − 1) BQ (BQ)ᵀ u = B u + BF W' (BF)ᵀ u.
+    // G u = B u + Σ (μ − 1) BQ (BQ)ᵀ u = B (u + F W' Fᵀ B u): B is symmetric, and the flows,
+    // which only call gradient(), need not keep B F.
     const Eigen::VectorXd u = detail::interleave(U);
-    Eigen::VectorXd result = base_times(u);
-    if (base_fields_.cols() > 0) {
-        const Eigen::VectorXd components = base_fields_.transpose() * u;
-        result.noalias() += base_fields_ * (apply_weights_ * components);
+    const Eigen::VectorXd Bu = base_times(u);
+    if (fields_.cols() == 0) {
+        return detail::deinterleave(Bu);
     }
-    return detail::deinterleave(result);
+    const Eigen::VectorXd components = fields_.transpose() * Bu;
+    return detail::deinterleave(base_times(u + fields_ * (apply_weights_ * components)));
 }
 
 VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& A, double dt,
@@ -258,7 +257,7 @@ VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& 
     for (const CoefficientBlock& block : coefficients_) {
         columns += block.penalty != 1 ? block.T.cols() : 0;
     }
-    Eigen::MatrixXd T(fields_.cols(), columns);  // U = BF T
+    Eigen::MatrixXd T(fields_.cols(), columns);  // U = B F T
     Eigen::VectorXd gamma_inverse(columns);
     Eigen::Index column = 0;
     for (const CoefficientBlock& block : coefficients_) {
@@ -269,11 +268,11 @@ VertexField SubspaceMetric::shifted_gradient(const Eigen::SparseMatrix<double>& 
             column += block.T.cols();
         }
     }
-    const Eigen::MatrixXd U = base_fields_ * T;
     const Eigen::VectorXd Er = E_inverse_times(detail::interleave(R));
     if (columns == 0) {
         return detail::deinterleave(Er);
     }
+    const Eigen::MatrixXd U = base_times(fields_ * T);
     const Eigen::MatrixXd EU = E_inverse_times(U);
     Eigen::MatrixXd capacitance = U.transpose() * EU;
     capacitance.diagonal() += gamma_inverse;

@@ -86,9 +86,8 @@ private:
     std::unique_ptr<Metric> base_;  // null: B = M
     Eigen::VectorXd masses_;
     Eigen::VectorXd row_masses_;  // m_i for each of the 3n rows
-    // The fields of the last update() side by side, F (3n×m), and B F.
+    // The fields of the last update() side by side, F (3n×m).
     Eigen::MatrixXd fields_;
-    Eigen::MatrixXd base_fields_;
     // Q_k = F T_k, B-orthonormal, and μ_k; T_k has a row for each column of F up to block
     // k's last (the rest of T_k is zero).
     struct CoefficientBlock {
