@@ -212,9 +212,11 @@ CorrespondenceError correspondence_error(const Eigen::MatrixX3d& deformed,
     if (deformed.rows() == 0 || !detail::all_finite(deformed)) {
         throw InvalidInput("correspondence_error: the deformed vertices must be finite and many");
     }
-    if (!detail::finite_above(options.length, 0) || !detail::finite_at_least(options.detour, 1)) {
+    if (!detail::finite_above(options.length, 0) || !detail::finite_at_least(options.detour, 1) ||
+        !detail::finite_at_least(options.placement_tolerance, 0)) {
         throw InvalidInput(
-            "correspondence_error: the stranded length must be > 0 and the detour >= 1");
+            "correspondence_error: the stranded length must be > 0, the detour >= 1 and the "
+            "placement tolerance >= 0");
     }
     const TriangleBvh bvh(truth);  // refuses a mesh without faces or with non-finite points
     const double diagonal = bounding_box_diagonal(truth);
@@ -227,6 +229,7 @@ CorrespondenceError correspondence_error(const Eigen::MatrixX3d& deformed,
     error.median = median_of(error.distance);
     error.max = error.distance.maxCoeff();
 
+    const double tolerance = options.placement_tolerance * mean_edge_length(truth);
     const ChordGraph graph = detail::chord_graph(truth, 2);
     const Landmarks landmarks(truth, graph, kLandmarks);
     // One byte per vertex: the threads write their own vertices, which std::vector<bool>'s
@@ -237,6 +240,9 @@ CorrespondenceError correspondence_error(const Eigen::MatrixX3d& deformed,
         BoundedPath path(truth, graph, landmarks);
 #pragma omp for schedule(dynamic, 64)
         for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
+            if ((deformed.row(i) - truth.V.row(i)).norm() <= tolerance) {
+                continue;  // at its place, whichever part of the truth touches there
+            }
             const SurfacePoint landed = bvh.closest_point(deformed.row(i).transpose());
             const double straight = (landed.point - truth.V.row(i).transpose()).norm();
             const double bound = std::max(options.length * diagonal, options.detour * straight);

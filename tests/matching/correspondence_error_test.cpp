@@ -30,20 +30,20 @@ constexpr double kWidth = 0.3;
 // A strip folded into a U: the bottom sheet z = 0 for x in [0, 1], a half-cylinder about
 // x = 1, the top sheet z = 0.1 back to x = 0. Points straight above one another are 0.1 apart
 // in space and up to 2.16 apart along the surface: a stand-in for two fingers side by side.
-TriangleMesh folded_strip() {
+// With a smaller `radius`, the sheets nearly touch.
+TriangleMesh folded_strip(double radius = kRadius) {
     TriangleMesh strip = make_grid(60, 1.0);
-    const double length = 2 * kSheet + std::numbers::pi * kRadius;
+    const double length = 2 * kSheet + std::numbers::pi * radius;
     for (Eigen::Index i = 0; i < strip.V.rows(); ++i) {
         const double u = strip.V(i, 0) * length;
         const double y = strip.V(i, 1) * kWidth;
         if (u <= kSheet) {
             strip.V.row(i) << u, y, 0;
-        } else if (u <= kSheet + std::numbers::pi * kRadius) {
-            const double angle = (u - kSheet) / kRadius;
-            strip.V.row(i) << kSheet + kRadius * std::sin(angle), y,
-                kRadius * (1 - std::cos(angle));
+        } else if (u <= kSheet + std::numbers::pi * radius) {
+            const double angle = (u - kSheet) / radius;
+            strip.V.row(i) << kSheet + radius * std::sin(angle), y, radius * (1 - std::cos(angle));
         } else {
-            strip.V.row(i) << kSheet - (u - kSheet - std::numbers::pi * kRadius), y, 2 * kRadius;
+            strip.V.row(i) << kSheet - (u - kSheet - std::numbers::pi * radius), y, 2 * radius;
         }
     }
     return strip;
@@ -100,6 +100,41 @@ TEST(CorrespondenceError, PointsPutOnTheOtherSheetAreStranded) {
 
     // A detour allowance longer than any way round strands nothing.
     EXPECT_EQ(correspondence_error(deformed, truth, {.detour = 30}).stranded_count, 0);
+}
+
+// Where the ground truth's sheets nearly touch (0.01 apart, under half the mean edge length),
+// vertices of the top sheet put 0.006 below their place lie nearer the bottom sheet, far along
+// the surface: within an edge length of where they belong, they are at their place.
+TEST(CorrespondenceError, VerticesAtTheirPlaceWhereSurfacesTouchAreNotStranded) {
+    constexpr double kTouching = 0.005;
+    const TriangleMesh truth = folded_strip(kTouching);
+    ASSERT_GT(mean_edge_length(truth), 2 * (2 * kTouching));
+    Eigen::MatrixX3d deformed = truth.V;
+    Eigen::Index moved = 0;
+    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
+        if (truth.V(i, 2) > 2 * kTouching - 1e-12 && truth.V(i, 0) < 0.8) {
+            deformed(i, 2) -= 0.006;
+            ++moved;
+        }
+    }
+    ASSERT_GT(moved, 1000);
+    EXPECT_EQ(correspondence_error(deformed, truth).stranded_count, 0);
+    // Without the tolerance, the nearest surface decides: each is stranded on the other sheet.
+    EXPECT_EQ(correspondence_error(deformed, truth, {.placement_tolerance = 0}).stranded_count,
+              moved);
+    // Put well off their place (0.3 along x, about ten edges) and onto the top sheet: the
+    // tolerance keeps none of them.
+    deformed = truth.V;
+    Eigen::Index lifted = 0;
+    for (Eigen::Index i = 0; i < deformed.rows(); ++i) {
+        if (truth.V(i, 2) == 0 && truth.V(i, 0) < 0.5) {
+            deformed(i, 0) += 0.3;
+            deformed(i, 2) = 2 * kTouching + 0.001;  // just above the top sheet
+            ++lifted;
+        }
+    }
+    ASSERT_GT(lifted, 500);
+    EXPECT_EQ(correspondence_error(deformed, truth).stranded_count, lifted);
 }
 
 TEST(CorrespondenceError, PointsSlidAlongTheirOwnSheetAreOffButNotStranded) {
@@ -277,6 +312,8 @@ TEST(CorrespondenceError, RefusesMismatchedOrNonFiniteInput) {
     deformed(3, 1) = std::numeric_limits<double>::quiet_NaN();
     EXPECT_THROW((void)correspondence_error(deformed, truth), InvalidInput);
     EXPECT_THROW((void)correspondence_error(truth.V, truth, {.length = 0}), InvalidInput);
+    EXPECT_THROW((void)correspondence_error(truth.V, truth, {.placement_tolerance = -1}),
+                 InvalidInput);
     TriangleMesh faceless = truth;
     faceless.F.resize(0, 3);
     EXPECT_THROW((void)correspondence_error(truth.V, faceless), InvalidInput);

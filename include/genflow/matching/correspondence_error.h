@@ -28,6 +28,14 @@ struct StrandedOptions {
     /// hand on the hip). A vertex slid along its own limb, however far, has a path about as
     /// long as the straight line and counts in the errors only.
     double detour = 2;
+    /// A vertex put within this many mean edge lengths of the ground truth from where it
+    /// belongs is at its place and never stranded: where two parts of the ground truth touch
+    /// (a fingertip on the next finger, the thighs), a vertex a fraction of an edge from its
+    /// own place may be nearer the other part, which the sampling cannot tell from its own.
+    /// (Measured with h1 on the full pairs of $GENFLOW_DATA: TOSCA michael 0→1's only two
+    /// stranded vertices, 0.15 and 0.10 % of the diagonal from where they belong, 0.05 and
+    /// 0.004 % from a finger that touches theirs.)
+    double placement_tolerance = 1;
 };
 
 /// The error of a deformed template against the ground truth (same vertex count and order:
@@ -52,16 +60,18 @@ struct CorrespondenceError {
 };
 
 /// Measures `deformed` (#V×3, the template's vertices after a match) against `truth`. A vertex
-/// is placed on the ground-truth surface point nearest to it; its path from g_i is walked over
-/// the chords between vertices of `truth` at most two edges apart (to a corner of the face
-/// reached, then straight), which follows the surface closely even on long thin triangles,
-/// where paths along the edges zigzag. Each vertex is decided by the bounds that 32 landmark
-/// vertices give on path lengths where they suffice, else by an A* search towards the face that
-/// stops at the bound that decides; a match gone wrong takes about as long as a good one.
+/// not at its place (StrandedOptions::placement_tolerance) is placed on the ground-truth
+/// surface point nearest to it; its path from g_i is walked over the chords between vertices
+/// of `truth` at most two edges apart (to a corner of the face reached, then straight), which
+/// follows the surface closely even on long thin triangles, where paths along the edges
+/// zigzag. Each vertex is decided by the bounds that 32 landmark vertices give on path lengths
+/// where they suffice, else by an A* search towards the face that stops at the bound that
+/// decides; a match gone wrong takes about as long as a good one.
 /// Faces are compared by their normals in `deformed` and in `truth` (`truth`'s faces index
 /// both). Uses both cores when OpenMP is available.
 /// \throws InvalidInput if the vertex counts differ, a point is not finite, `truth` has no face
-///         or a zero diagonal, or the options are not positive and finite (detour ≥ 1).
+///         or a zero diagonal, or the options are not finite, with length > 0, detour ≥ 1 and
+///         placement_tolerance ≥ 0.
 [[nodiscard]] CorrespondenceError correspondence_error(const Eigen::MatrixX3d& deformed,
                                                        const TriangleMesh& truth,
                                                        const StrandedOptions& options = {});
