@@ -227,7 +227,8 @@ void run_eval(const EvalOptions& options) {
             "diagonal; stranded: how many template vertices were put on the wrong part of the "
             "shape (the ground-truth point nearest to where a vertex was put is more than 10 %% "
             "of the diagonal from where it belongs along the surface, and more than twice as "
-            "far as straight); reversed: the share of the ground truth's area whose faces the "
+            "far as straight; one within a mean edge length of where it belongs is at its "
+            "place); reversed: the share of the ground truth's area whose faces the "
             "match turned over (a part put back to front); Hausdorff is the exact symmetric "
             "distance to the remeshed target over the same diagonal.\n");
     }
