@@ -91,7 +91,9 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         options.refinement_guidances < 0 || options.refinement_guidances > 8 ||
         options.refinement_iterations < 0 || options.map_fits < 0 ||
         options.alternative_starts < 0 || std::isnan(options.second_opinion_above) ||
-        options.second_opinion_above < 0) {
+        options.second_opinion_above < 0 ||
+        !detail::finite_above(options.articulated_finest_global, 0) ||
+        options.articulated_finest_global > 1) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
@@ -99,8 +101,8 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
             "signature_guidance >= 0, eigenfunction_guidance >= 0, stretch_weight >= 0, "
             "stiffness_candidates >= 1, contenders >= 1, contender_tolerance >= 0, "
             "guidance_candidates in [1, 8], refinement_guidances in [0, 8], "
-            "refinement_iterations >= 0, map_fits >= 0, alternative_starts >= 0 and "
-            "second_opinion_above >= 0");
+            "refinement_iterations >= 0, map_fits >= 0, alternative_starts >= 0, "
+            "second_opinion_above >= 0 and articulated_finest_global in (0, 1]");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -110,9 +112,11 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
     }
 }
 
-// `parts`: the level's part model, joint centres at the positions of `template_mesh`.
+// `parts`: the level's part model, joint centres at the positions of `template_mesh`;
+// `articulated`: the articulated prior's options at this level.
 std::unique_ptr<Metric> make_metric(const MatchOptions& options, MatchPrior prior,
-                                    const TriangleMesh& template_mesh, const PartModel* parts) {
+                                    const TriangleMesh& template_mesh, const PartModel* parts,
+                                    const QuasiArticulatedOptions& articulated) {
     switch (prior) {
         case MatchPrior::L2:
             return std::make_unique<L2Metric>();
@@ -124,7 +128,7 @@ std::unique_ptr<Metric> make_metric(const MatchOptions& options, MatchPrior prio
             return std::make_unique<SubspaceMetric>(quasi_rigid_metric(options.rigid));
         case MatchPrior::Articulated:
             return std::make_unique<SubspaceMetric>(
-                quasi_articulated_metric(template_mesh, *parts, options.articulated));
+                quasi_articulated_metric(template_mesh, *parts, articulated));
         case MatchPrior::Isometric:
             return std::make_unique<QuasiIsometricMetric>(options.isometric);
     }
@@ -410,8 +414,12 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             return WeightedSumEnergy(std::move(terms));
         };
         const WeightedSumEnergy energy = energy_with_epsilon(1);
+        QuasiArticulatedOptions articulated = options.articulated;
+        if (l == 0 && count > 1) {  // the finest of several levels
+            articulated.global = options.articulated_finest_global;
+        }
         const std::unique_ptr<Metric> metric =
-            make_metric(options, prior, rest, parts ? &*parts : nullptr);
+            make_metric(options, prior, rest, parts ? &*parts : nullptr, articulated);
         DescentOptions descent{.max_displacement = options.max_step * diagonal,
                                .max_steps = iterations,
                                .stagnation_tolerance = options.stagnation_tolerance,

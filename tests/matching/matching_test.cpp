@@ -1001,5 +1001,14 @@ TEST(Match, RejectsANegativeSecondOpinionThreshold) {
     EXPECT_THROW((void)match(mesh, mesh, options), InvalidInput);
 }
 
+TEST(Match, RejectsAFinestGlobalPenaltyOutsideZeroToOne) {
+    const TriangleMesh mesh = make_icosphere(2);
+    MatchOptions options;
+    for (const double penalty : {0.0, -0.5, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
+        options.articulated_finest_global = penalty;
+        EXPECT_THROW((void)match(mesh, mesh, options), InvalidInput) << penalty;
+    }
+}
+
 }  // namespace
 }  // namespace genflow

@@ -337,6 +337,17 @@ struct MatchOptions {
     /// template's own frame), and the prior's penalties.
     std::optional<PartModel> parts;
     QuasiArticulatedOptions articulated;
+    /// The articulated prior's penalty of the global rigid motion on the finest level, in
+    /// (0, 1], in place of `articulated.global` (1: that motion costs what any other does). The
+    /// finest level's short flow polishes a pose the coarser levels settled; boosted there,
+    /// each explicit step was mostly the whole template moving, which the backtracking on d_H
+    /// accepts up to about twice as far as d_H's minimum along it: FAUST 001→002
+    /// (docs/eval/posed_templates.json) shifted 0.1–0.4 % of the diagonal back and forth at
+    /// every step, 1.70 → 2.07 % mean error over the level. At 1: 1.73 %, and the 22
+    /// articulated rows of docs/eval 1.006 → 0.977 % on average (12 better, 5 worse by
+    /// 0.04 % at most). Unboosted on the refined level too, the libigl arm rest→pose2 went
+    /// 1.93 → 3.16 %: its fits to the fine map need the prior there.
+    double articulated_finest_global = 1;
     /// Parameters of the quasi-isometric prior (rigidity length relative to the diagonal). G is
     /// rebuilt every 4th step: 2.2× faster on the centaur (24 → 11 s), errors unchanged to
     /// ±0.05 % on the small pairs.
