@@ -556,7 +556,9 @@ double mean_edge_strain(const TriangleMesh& template_mesh, const MatchResult& re
 }
 
 // Without parts, the quasi-isometric prior follows the bend while keeping edge lengths better
-// than L2 (which slides) and bending where the quasi-rigid prior cannot.
+// than L2 (which slides) and bending where the quasi-rigid prior cannot. Guided (its coarsest
+// level's rounds in the H1 metric, then a flow in its own), it ends nearer the truth than
+// unguided, and its edges keep their lengths about twice as well as L2's.
 TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
     const BentLimbPair pair;
     const TriangleMesh& template_mesh = pair.template_mesh;
@@ -566,15 +568,25 @@ TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
     options.prior = MatchPrior::Isometric;
     options.isometric.refresh_interval = 1;  // the prior itself, not its faster lagged form
     const MatchResult isometric = match(template_mesh, pair.target, options);
+    MatchOptions unguided_options = options;
+    unguided_options.signature_guidance = 0;
+    const MatchResult unguided = match(template_mesh, pair.target, unguided_options);
     options.prior = MatchPrior::L2;
     const MatchResult l2 = match(template_mesh, pair.target, options);
     options.prior = MatchPrior::Rigid;
     const MatchResult rigid = match(template_mesh, pair.target, options);
     const double start = pair.error(template_mesh.V);
-    EXPECT_LT(pair.error(isometric), 0.8 * start);              // measured 0.026 from 0.036
-    EXPECT_LT(pair.error(isometric), 0.8 * pair.error(rigid));  // 0.040
-    EXPECT_LT(pair.error(isometric), pair.error(l2));           // 0.030
-    EXPECT_LT(strain(isometric), 0.7 * strain(l2));             // 0.034 against 0.060
+    std::printf(
+        "error %.4f (unguided %.4f, rigid %.4f, L2 %.4f), strain %.4f (unguided %.4f, "
+        "L2 %.4f)\n",
+        pair.error(isometric), pair.error(unguided), pair.error(rigid), pair.error(l2),
+        strain(isometric), strain(unguided), strain(l2));
+    EXPECT_LT(pair.error(isometric), 0.8 * start);                  // measured 0.016 from 0.036
+    EXPECT_LT(pair.error(isometric), 0.75 * pair.error(unguided));  // 0.026
+    EXPECT_LT(pair.error(isometric), 0.8 * pair.error(rigid));      // 0.036
+    EXPECT_LT(pair.error(isometric), pair.error(l2));               // 0.029
+    EXPECT_LT(strain(isometric), 0.5 * strain(l2));                 // 0.065 against 0.20
+    EXPECT_TRUE(isometric.intrinsic_disagreement.has_value());      // ranked as guided results are
 }
 
 // The ε schedule flows half the coarsest level with a larger ε; what it reports is the level's

@@ -137,7 +137,7 @@ struct MatchOptions {
     int alignment_candidates = 6;
     int selection_iterations = 300;
     double selection_tolerance = 0.05;
-    /// With the guided rounds (signature_guidance, h1 and articulated), a start that agreed
+    /// With the guided rounds (signature_guidance; h1, articulated, isometric), a start that agreed
     /// about as well after the selection flows may end better: the libigl arm's chosen start
     /// is twisted about the arm (disagreement 0.42 against 0.48 for the right one; 6.7 % mean
     /// error at the end against 2.1 %), and the rounds that follow tell them apart (0.25
@@ -161,13 +161,17 @@ struct MatchOptions {
     /// template's log signatures apart at every time; 0 turns the guidance off. Measured on the
     /// 1000-vertex levels of the 9 full pairs of $GENFLOW_DATA (H1): the mean error falls on
     /// every pair (FAUST 3.8 → 1.5 %, makehuman body 4.3 → 1.6 %, centaur 3.9 → 2.1 %, wolf
-    /// 1.6 → 1.1 %); weights of 0.05 and 0.2 gain less. Guided are the h1 and articulated
-    /// priors (articulated, with the eigenfunctions: makehuman body 3.4 → 1.1 %, FAUST
-    /// 6.8 → 2.2 %, hand 9.6 → 4.1 %). Not the quasi-rigid prior: the guidance pulled a rigidly
-    /// moved limb 7 % off (the signatures of two samplings differ, and a rigid motion is all
-    /// that flow can change to meet them); not the quasi-isometric one: its errors fell as much
-    /// (horse 7.6 → 1.9 %) but on the bent test limb its mean edge strain rose from 0.034 to
-    /// 0.16, above L2's, which is what that prior is for; L2 stays the unguided baseline.
+    /// 1.6 → 1.1 %); weights of 0.05 and 0.2 gain less. Guided are the h1, articulated and
+    /// isometric priors (articulated, with the eigenfunctions: makehuman body 3.4 → 1.1 %, FAUST
+    /// 6.8 → 2.2 %, hand 9.6 → 4.1 %). The quasi-isometric prior's guided rounds flow in the H1
+    /// metric, and the kept result then flows max_iterations steps in its own: its own rounds
+    /// end too far from the target for their disagreement to tell a front-to-back result from
+    /// the right one (TOSCA michael 0→1 was kept front to back, 18.9 % off). So guided, the 12
+    /// pairs of $GENFLOW_DATA went from 1.8–10.3 % to 0.4–2.5 % (horse 7.6 → 1.1 %, michael
+    /// 7.2 → 0.4 %), and the bent test limb's mean edge strain from 0.034 to 0.065, still below
+    /// L2's 0.20. Not the quasi-rigid prior: the guidance pulled a rigidly moved limb 7 % off
+    /// (the signatures of two samplings differ, and a rigid motion is all that flow can change to
+    /// meet them); L2 stays the unguided baseline.
     double signature_guidance = 0.1;
     /// Then the guidance by the eigenfunctions (with signature_guidance only): the signatures
     /// are blind to a shape's symmetries, and a left paw may land on the right one (wolf, horse,
@@ -249,7 +253,7 @@ struct MatchOptions {
     /// `refinement_iterations` steps on the d_H augmented with the eigenfunctions (and the kept
     /// stretch weight) before its plain flow; of those results and the plain flow alone, the
     /// one whose coarsest vertices disagree least with the target intrinsically is kept
-    /// (guided h1 and articulated matches with eigenfunction_guidance only; 0 turns this off).
+    /// (guided matches with eigenfunction_guidance only; 0 turns this off).
     /// The refining flows run side by side. Measured on the 12 pairs of $GENFLOW_DATA (h1,
     /// mean error): hand 2.25 → 1.90 %, libigl arm 2.13 → 1.64, small cat 2.41 → 1.79,
     /// makehuman body 0.61 → 0.52, the others within 0.01 (the TOSCA cat kept its plain flow:
@@ -288,9 +292,9 @@ struct MatchOptions {
     /// after four), though it ends with a larger Hausdorff distance (1.5 → 4.0 %: faces stretched
     /// across the elbow). MatchResult::map_fits says how many fits were kept.
     int map_fits = 6;
-    /// A second opinion for guided matches (h1, articulated): the guided rounds of the coarsest
-    /// level again, from a start found without the flow (the shapes' extremities matched by
-    /// their geodesic distances, a functional map fitted to them, the template at the shapes'
+    /// A second opinion for guided matches (h1, articulated, isometric): the guided rounds of the
+    /// coarsest level again, from a start found without the flow (the shapes' extremities matched
+    /// by their geodesic distances, a functional map fitted to them, the template at the shapes'
     /// area ratio turned and moved onto where that map puts it; src/matching/intrinsic_start.h),
     /// whose placement also serves to estimate the eigenfunctions' map. Its result is kept if it
     /// disagrees clearly less with the target, by a quarter, than the rigid starts' best, or
