@@ -91,7 +91,8 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         options.refinement_guidances < 0 || options.refinement_guidances > 8 ||
         options.refinement_iterations < 0 || options.map_fits < 0 ||
         options.alternative_starts < 0 || std::isnan(options.second_opinion_above) ||
-        options.second_opinion_above < 0 ||
+        options.second_opinion_above < 0 || std::isnan(options.alternative_starts_above) ||
+        options.alternative_starts_above < 0 ||
         !detail::finite_above(options.articulated_finest_global, 0) ||
         options.articulated_finest_global > 1) {
         throw InvalidInput(
@@ -102,7 +103,8 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
             "stiffness_candidates >= 1, contenders >= 1, contender_tolerance >= 0, "
             "guidance_candidates in [1, 8], refinement_guidances in [0, 8], "
             "refinement_iterations >= 0, map_fits >= 0, alternative_starts >= 0, "
-            "second_opinion_above >= 0 and articulated_finest_global in (0, 1]");
+            "second_opinion_above >= 0, alternative_starts_above >= 0 and "
+            "articulated_finest_global in (0, 1]");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -715,11 +717,14 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             result.second_opinion_disagreement = outcomes[rigid_contenders].disagreement;
             result.second_opinion = kept == rigid_contenders;
         }
-        // A doubtful result, or one from the second opinion, is matched again from the
-        // intrinsic starts of the next landmark sets, side by side; the one that disagrees least
-        // is kept (MatchOptions::alternative_starts).
+        // A doubtful result, or one from the second opinion that disagrees more than right
+        // matches do, is matched again from the intrinsic starts of the next landmark sets,
+        // side by side; the one that disagrees least is kept (MatchOptions::alternative_starts,
+        // alternative_starts_above).
+        const double disagreement_kept = outcomes[kept].disagreement;
         if (!cancelled && intrinsic.size() > 1 &&
-            (outcomes[kept].disagreement > kDoubtfulDisagreement || result.second_opinion)) {
+            (disagreement_kept > kDoubtfulDisagreement ||
+             (result.second_opinion && disagreement_kept > options.alternative_starts_above))) {
             const std::size_t first = outcomes.size();
             for (std::size_t next = 1; next < intrinsic.size(); ++next) {
                 starts.push_back(intrinsic[next].similarity);

@@ -997,20 +997,28 @@ TEST(Match, SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss) {
 
 // Asked only of doubtful results, the second opinion comes after the rigid starts' guided
 // rounds (that it was given at all says their result was doubtful), and takes over the same
-// match.
+// match. With alternative_starts_above at the same threshold only a doubtful result would be
+// matched again from the alternative starts: its result (0.31) is not, so none is tried,
+// though three are allowed.
 TEST(Match, DoubtfulMatchTakesTheSecondOpinionAfterTheRigidStarts) {
     const test::PosedSpikedFigure figure;
     MatchOptions options;
     options.second_opinion_above = kDoubtfulDisagreement;
-    options.alternative_starts = 0;
+    options.alternative_starts_above = kDoubtfulDisagreement;
+    ASSERT_GT(options.alternative_starts, 0);
     expect_second_opinion_kept(figure, match(figure.template_mesh, figure.target, options), false);
 }
 
-TEST(Match, RejectsANegativeSecondOpinionThreshold) {
+TEST(Match, RejectsANegativeSecondOpinionOrAlternativeStartsThreshold) {
     const TriangleMesh mesh = make_icosphere(2);
-    MatchOptions options;
-    options.second_opinion_above = -1;
-    EXPECT_THROW((void)match(mesh, mesh, options), InvalidInput);
+    for (const double threshold : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
+        MatchOptions options;
+        options.second_opinion_above = threshold;
+        EXPECT_THROW((void)match(mesh, mesh, options), InvalidInput) << threshold;
+        options = MatchOptions{};
+        options.alternative_starts_above = threshold;
+        EXPECT_THROW((void)match(mesh, mesh, options), InvalidInput) << threshold;
+    }
 }
 
 TEST(Match, RejectsAFinestGlobalPenaltyOutsideZeroToOne) {

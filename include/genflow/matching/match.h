@@ -164,7 +164,7 @@ struct MatchOptions {
     /// 1.6 → 1.1 %); weights of 0.05 and 0.2 gain less. Guided are the h1, articulated and
     /// isometric priors (articulated, with the eigenfunctions: makehuman body 3.4 → 1.1 %, FAUST
     /// 6.8 → 2.2 %, hand 9.6 → 4.1 %). The quasi-isometric prior's guided rounds flow in the H1
-    /// metric, and the kept result then flows max_iterations steps in its own: its own rounds
+    /// metric, and the kept result then flows up to max_iterations steps in its own: its own rounds
     /// end too far from the target for their disagreement to tell a front-to-back result from
     /// the right one (TOSCA michael 0→1 was kept front to back, 18.9 % off). So guided, the 12
     /// pairs of $GENFLOW_DATA went from 1.8–10.3 % to 0.4–2.5 % (horse 7.6 → 1.1 %, michael
@@ -318,9 +318,19 @@ struct MatchOptions {
     /// the pose breaks the symmetry the orientation test relies on: TOSCA michael standing to
     /// kneeling (1→2) was matched front to back, 22.6 % mean error, though not doubtful (0.27);
     /// from the next set 0.24. A result from the second opinion rests on that set alone, so
-    /// the next ones are tried whatever its disagreement. Needs the second opinion
-    /// (second_opinion_above); 0 = none.
+    /// the next ones are tried for it below kDoubtfulDisagreement too, down to
+    /// alternative_starts_above. Needs the second opinion (second_opinion_above); 0 = none.
     int alternative_starts = 3;
+    /// The disagreement above which a result the second opinion gave is matched again from the
+    /// alternative starts (a doubtful result always is); 0 = every one. Below the lowest that a
+    /// wrong match reached on the h1 matches of docs/eval (TOSCA michael 0→1 from starts turned
+    /// front to back, 0.19; michael 1→2's front-to-back second opinion, 0.27, is still matched
+    /// again). Of those 45 matches, 14 kept a second opinion below it; their alternative starts
+    /// ended within 0.005 of it, none clearly better, so it stands: such a match takes about
+    /// half the time (makehuman body rest→pose1 29.9 → 15.4 s, TOSCA michael 0→1 47.6 →
+    /// 30.4 s), and its mean error moved by −0.03 … +0.16 % (libigl arm rest→pose3 1.07 →
+    /// 1.23 %; unchanged on 8 of the 14).
+    double alternative_starts_above = 0.15;
     /// Limbs put on each other's places: a template whose stride puts its left leg where the
     /// target has its right one is matched with the two exchanged, and neither d_H nor the
     /// heat kernel signatures tell. The turning functions of pairs of extremities do (they
