@@ -48,9 +48,9 @@ void create_output_directory(const std::filesystem::path& directory) {
     }
 }
 
-void add_second_opinion_option(CLI::App& command, double& threshold) {
-    // Non-negative or inf ("never"): CLI::NonNegativeNumber stops at the largest double.
-    const CLI::Validator non_negative_or_infinity(
+CLI::Validator non_negative_or_infinity() {
+    // CLI::NonNegativeNumber stops at the largest double; a threshold may be inf ("never").
+    return CLI::Validator(
         [](const std::string& text) {
             char* end = nullptr;
             const double value = std::strtod(text.c_str(), &end);
@@ -60,6 +60,9 @@ void add_second_opinion_option(CLI::App& command, double& threshold) {
             return std::string();
         },
         "NONNEGATIVE or inf");
+}
+
+void add_second_opinion_option(CLI::App& command, double& threshold) {
     command
         .add_option("--second-opinion-above", threshold,
                     "Match the coarsest level also from an intrinsic start (extremities "
@@ -67,7 +70,7 @@ void add_second_opinion_option(CLI::App& command, double& threshold) {
                     "with the target: 0 = always, side by side with the rigid starts; above 0, "
                     "only when the result's intrinsic disagreement is above this, after them "
                     "(0.35: the doubtful ones); inf = never")
-        ->check(non_negative_or_infinity)
+        ->check(non_negative_or_infinity())
         ->capture_default_str();
 }
 

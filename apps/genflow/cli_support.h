@@ -45,6 +45,10 @@ std::string frame_name(int step);
 /// naming it on failure.
 void create_output_directory(const std::filesystem::path& directory);
 
+/// Checks a threshold option: a number >= 0, or inf for "never" (CLI::NonNegativeNumber refuses
+/// inf).
+[[nodiscard]] CLI::Validator non_negative_or_infinity();
+
 /// `--second-opinion-above X` (MatchOptions::second_opinion_above), shared by match and eval.
 void add_second_opinion_option(CLI::App& command, double& threshold);
 

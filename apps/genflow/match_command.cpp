@@ -284,8 +284,8 @@ void register_match_command(CLI::App& app) {
         ->add_option("--alternative-starts-above", options->match.alternative_starts_above,
                      "Only a second opinion's result that disagrees more than this with the "
                      "target is matched again from the alternative starts (a doubtful one always "
-                     "is; 0: every one)")
-        ->check(CLI::NonNegativeNumber)
+                     "is; 0: every one; inf: none)")
+        ->check(non_negative_or_infinity())
         ->capture_default_str();
     command->add_flag("--no-limb-swaps", options->no_limb_swaps,
                       "Do not check whether the match put two limbs on each other's places (a "

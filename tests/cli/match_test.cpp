@@ -89,15 +89,16 @@ TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
     for (const char* refused_option : {" --rigidity-length -1", " --map-fits -1"}) {
         EXPECT_NE(run_genflow(command + refused_option).exit_code, 0) << refused_option;
     }
-    for (const char* threshold : {"-0.1", "nan"}) {
-        const auto no_threshold =
-            run_genflow(command + " --second-opinion-above " + std::string(threshold));
-        EXPECT_NE(no_threshold.exit_code, 0) << threshold;
-        EXPECT_NE(no_threshold.err.find("--second-opinion-above"), std::string::npos)
-            << no_threshold.err;
+    for (const std::string option : {"--second-opinion-above", "--alternative-starts-above"}) {
+        for (const std::string threshold : {"-0.1", "nan", "x"}) {
+            const auto no_threshold = run_genflow(command + " " + option + " " + threshold);
+            EXPECT_NE(no_threshold.exit_code, 0) << option << " " << threshold;
+            EXPECT_NE(no_threshold.err.find(option), std::string::npos) << no_threshold.err;
+        }
     }
-    // inf, never, is a threshold too.
-    const auto quiet = run_genflow(command + " --quiet --second-opinion-above inf");
+    // inf, never, is a threshold too, for both.
+    const auto quiet =
+        run_genflow(command + " --quiet --second-opinion-above inf --alternative-starts-above inf");
     ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
     EXPECT_NE(quiet.out.find("isometric prior"), std::string::npos) << quiet.out;
     EXPECT_EQ(quiet.err, "");
