@@ -79,11 +79,15 @@ double log_sum_exp(const std::vector<double>& values) {
 // r^α for 0 < r ≤ 1, by repeated squaring when α is a small integer (the usual 8 or 16).
 // The default α = 8 is spelled out: the loop's shifts and branches cost as much as the products
 // in the innermost sums. It squares as the loop does, so the result is the same to the bit.
+double eighth_power(double r) {
+    const double r2 = r * r;
+    const double r4 = r2 * r2;
+    return r4 * r4;
+}
+
 double ratio_power(double r, double alpha, int integer_alpha) {
     if (integer_alpha == 8) {
-        const double r2 = r * r;
-        const double r4 = r2 * r2;
-        return r4 * r4;
+        return eighth_power(r);
     }
     if (integer_alpha > 0) {
         double result = 1;
@@ -373,22 +377,33 @@ KeptTerms weigh_terms(const Side& from, const Side& to, const Parameters& p, Eig
     if (from.has_descriptors()) {
         add_descriptor_distances(from, to, u, found);
     }
+    const std::size_t count = found.count;
+    const double* distances2 = found.distances2.data();
+    const std::uint32_t* slots = found.slots.data();
     double nearest2 = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < found.count; ++k) {
-        nearest2 = std::min(nearest2, found.distances2[k]);
+    for (std::size_t k = 0; k < count; ++k) {
+        nearest2 = std::min(nearest2, distances2[k]);
     }
-    const double d_star = nearest2 + p.eps2;  // κ_m ≥ 1: the point m itself is kept
-    if (term_over_d.size() < found.count) {
-        term_over_d.resize(std::max(found.count, 2 * term_over_d.size()));
+    const double eps2 = p.eps2;             // a local: the stores below could alias `p`
+    const double d_star = nearest2 + eps2;  // κ_m ≥ 1: the point m itself is kept
+    if (term_over_d.size() < count) {
+        term_over_d.resize(std::max(count, 2 * term_over_d.size()));
     }
-    double sum = 0;
-    for (std::size_t k = 0; k < found.count; ++k) {
-        const double inverse_d = 1 / (found.distances2[k] + p.eps2);
-        const double t =
-            grid.weight(found.slots[k]) * ratio_power(d_star * inverse_d, p.alpha, p.integer_alpha);
-        sum += t;
-        term_over_d[k] = t * inverse_d;
-    }
+    double* out = term_over_d.data();
+    // The power inlined for the default α = 8, the loop's other costs being a few operations.
+    const auto weigh = [&](auto power) {
+        double sum = 0;
+        for (std::size_t j = 0; j < count; ++j) {
+            const double inverse_d = 1 / (distances2[j] + eps2);
+            const double t = grid.weight(slots[j]) * power(d_star * inverse_d);
+            sum += t;
+            out[j] = t * inverse_d;
+        }
+        return sum;
+    };
+    const double sum = p.integer_alpha == 8 ? weigh(eighth_power) : weigh([&](double r) {
+        return ratio_power(r, p.alpha, p.integer_alpha);
+    });
     return {sum, std::log(sum) - p.alpha * std::log(d_star)};
 }
 

@@ -13,6 +13,14 @@
 #include <limits>
 #include <vector>
 
+// Inlines a lambda the compiler would otherwise call: a query visits a few rows of cells, of a
+// few points each, and a call per row costs as much as the points.
+#if defined(__GNUC__) || defined(__clang__)
+#define GENFLOW_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define GENFLOW_ALWAYS_INLINE
+#endif
+
 namespace genflow::detail {
 
 /// Points found by PointGrid::collect_within(): the first `count` entries of the arrays, which
@@ -74,27 +82,29 @@ public:
         const double* factor = factor_.data();
         double smallest = std::numeric_limits<double>::infinity();
         constexpr double kEverywhere = std::numeric_limits<double>::infinity();
-        for_each_run(query, k, kEverywhere, [&](std::uint32_t begin, std::uint32_t end) {
-            // Minima local to the run stay in registers (`smallest` lives in memory: the walk
-            // is not inlined), and two of them break the dependency chain of one.
-            double even = std::numeric_limits<double>::infinity();
-            double odd = even;
-            std::uint32_t p = begin;
-            for (; p + 1 < end; p += 2) {
-                const double d0 =
-                    square(x[p] - query[0]) + square(y[p] - query[1]) + square(z[p] - query[2]);
-                const double d1 = square(x[p + 1] - query[0]) + square(y[p + 1] - query[1]) +
-                                  square(z[p + 1] - query[2]);
-                even = std::min(even, factor[p] * (d0 + offset));
-                odd = std::min(odd, factor[p + 1] * (d1 + offset));
-            }
-            if (p < end) {
-                const double d0 =
-                    square(x[p] - query[0]) + square(y[p] - query[1]) + square(z[p] - query[2]);
-                even = std::min(even, factor[p] * (d0 + offset));
-            }
-            smallest = std::min({smallest, even, odd});
-        });
+        for_each_run(query, k, kEverywhere,
+                     [&](std::uint32_t begin, std::uint32_t end) GENFLOW_ALWAYS_INLINE {
+                         // Minima local to the run stay in registers, and two of them break the
+                         // dependency chain of one.
+                         double even = std::numeric_limits<double>::infinity();
+                         double odd = even;
+                         std::uint32_t p = begin;
+                         for (; p + 1 < end; p += 2) {
+                             const double d0 = square(x[p] - query[0]) + square(y[p] - query[1]) +
+                                               square(z[p] - query[2]);
+                             const double d1 = square(x[p + 1] - query[0]) +
+                                               square(y[p + 1] - query[1]) +
+                                               square(z[p + 1] - query[2]);
+                             even = std::min(even, factor[p] * (d0 + offset));
+                             odd = std::min(odd, factor[p + 1] * (d1 + offset));
+                         }
+                         if (p < end) {
+                             const double d0 = square(x[p] - query[0]) + square(y[p] - query[1]) +
+                                               square(z[p] - query[2]);
+                             even = std::min(even, factor[p] * (d0 + offset));
+                         }
+                         smallest = std::min({smallest, even, odd});
+                     });
         return smallest;
     }
 
@@ -102,28 +112,32 @@ public:
     /// distance ≤ `radius2`, with those distances; the accessors below read a point by slot.
     void collect_within(const Eigen::Vector3d& query, int k, double radius2,
                         NeighbourList& found) const {
-        const double* x = x_.data();
-        const double* y = y_.data();
-        const double* z = z_.data();
-        const double qx = query[0];  // locals: the stores below could alias `query`
-        const double qy = query[1];
-        const double qz = query[2];
         found.count = 0;
-        for_each_run(query, k, radius2, [&](std::uint32_t begin, std::uint32_t end) {
-            found.reserve(found.count + (end - begin));
-            std::uint32_t* slots = found.slots.data();
-            double* distances2 = found.distances2.data();
-            std::size_t count = found.count;
-            // Every point is written and only the kept ones advance the count: about a third
-            // of a block is kept, in no predictable order, which a branch would mispredict.
-            for (std::uint32_t p = begin; p < end; ++p) {
-                const double d = square(x[p] - qx) + square(y[p] - qy) + square(z[p] - qz);
-                slots[count] = p;
-                distances2[count] = d;
-                count += d <= radius2 ? 1 : 0;
-            }
-            found.count = count;
-        });
+        for_each_run(
+            query, k, radius2, [&](std::uint32_t begin, std::uint32_t end) GENFLOW_ALWAYS_INLINE {
+                // Locals, read once per run: the stores below could alias anything captured or
+                // reached through `this`, which would then be read again for every point.
+                const double qx = query[0];
+                const double qy = query[1];
+                const double qz = query[2];
+                const double r2 = radius2;
+                const double* x = x_.data();
+                const double* y = y_.data();
+                const double* z = z_.data();
+                found.reserve(found.count + (end - begin));
+                std::uint32_t* slots = found.slots.data();
+                double* distances2 = found.distances2.data();
+                std::size_t count = found.count;
+                // Every point is written and only the kept ones advance the count: about a third
+                // of a block is kept, in no predictable order, which a branch would mispredict.
+                for (std::uint32_t p = begin; p < end; ++p) {
+                    const double d = square(x[p] - qx) + square(y[p] - qy) + square(z[p] - qz);
+                    slots[count] = p;
+                    distances2[count] = d;
+                    count += d <= r2 ? 1 : 0;
+                }
+                found.count = count;
+            });
     }
 
     /// The total weight of the points in the block of (2k+1)³ cells around the cell of `query`
