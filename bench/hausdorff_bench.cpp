@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Pseudo-Hausdorff energy + gradient on the TOSCA cat pair of $GENFLOW_DATA (28K-vertex
 // template or ground-truth target against the 21K-vertex remeshed target), truncated and full;
-// and on both simplified to a match's coarsest level (about 470 and 360 vertices, truncation
-// 1e-2 as match() uses), where a match makes most of its evaluations (12.6K of the cat's 13.3K).
+// and on the pair simplified to the size of a match's coarsest level (cat: 505 and 370 vertices,
+// truncation 1e-2 as match() uses), where a match makes most of its evaluations (12.6K of the
+// cat's 13.3K).
 // Without the data it uses two generated spheres of similar sizes.
 #include <benchmark/benchmark.h>
 
@@ -40,8 +41,8 @@ const CatPair& cat() {
     return pair;
 }
 
-// The pair at a match's coarsest level: the ground-truth target and the remeshed one simplified
-// as match() simplifies them (MatchOptions::coarse_vertices).
+// The three meshes simplified to about the sizes of the cat match's coarsest level (471 and 361
+// vertices; match() simplifies each level from the one before, this goes straight there).
 const CatPair& coarse_cat() {
     static const CatPair pair = [] {
         return CatPair{genflow::coarsen(cat().template_mesh, 471).mesh,
