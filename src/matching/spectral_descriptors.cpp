@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "genflow/exceptions.h"
@@ -28,9 +29,9 @@ constexpr std::array<Eigen::Index, 4> kZoomOutFirstSizes{4, 6, 8, 10};
 struct CoarseSpectrum {
     std::vector<Eigen::Index> vertex;
     Eigen::MatrixXd log_signature;
-    Eigen::MatrixXd functions;  // non-constant, ascending
-    Eigen::VectorXd masses;
-    Eigen::VectorXd values;  // of `functions`, times the area (dimensionless)
+    Eigen::MatrixXd functions;  // non-constant, ascending, times sqrt(area) (dimensionless)
+    Eigen::VectorXd masses;     // over the area (they sum to at most 1)
+    Eigen::VectorXd values;     // of `functions`, times the area (dimensionless)
 };
 
 CoarseSpectrum coarse_spectrum(const TriangleMesh& coarse) {
@@ -45,9 +46,14 @@ CoarseSpectrum coarse_spectrum(const TriangleMesh& coarse) {
     const Eigen::Index count = std::min(kKeptFunctions, basis.values.size() - 1);
     const auto kept = Eigen::seqN(1, count);
     result.log_signature = signature(result.vertex, Eigen::all).array().log();
-    result.functions = basis.functions(result.vertex, kept);
-    result.masses = basis.masses(result.vertex);
-    result.values = basis.values(kept) * basis.masses.sum();
+    // In units of the mesh's own area, so that the two meshes' functions are comparable
+    // whatever the ratio of their sizes (issue 5: inputs may differ by any scale): M-orthonormal
+    // functions are of size 1/sqrt(area), and a map between functions of different sizes has
+    // singular values, and ZoomOut distances, scaled by that ratio.
+    const double area = basis.masses.sum();
+    result.functions = std::sqrt(area) * basis.functions(result.vertex, kept);
+    result.masses = basis.masses(result.vertex) / area;
+    result.values = basis.values(kept) * area;
     return result;
 }
 
@@ -100,11 +106,15 @@ std::vector<Eigen::Index> SpectralDescriptors::nearest_target_rows(
 }
 
 double SpectralDescriptors::discrepancy(const Eigen::MatrixX3d& deformed) const {
-    const std::vector<Eigen::Index> nearest = nearest_target_rows(deformed);
-    std::vector<double> squared(nearest.size());
-    for (std::size_t k = 0; k < nearest.size(); ++k) {
+    return signature_discrepancy(nearest_target_rows(deformed));
+}
+
+double SpectralDescriptors::signature_discrepancy(
+    const std::vector<Eigen::Index>& correspondence) const {
+    std::vector<double> squared(correspondence.size());
+    for (std::size_t k = 0; k < correspondence.size(); ++k) {
         squared[k] = (template_log_signature_.row(static_cast<Eigen::Index>(k)) -
-                      target_log_signature_.row(nearest[k]))
+                      target_log_signature_.row(correspondence[k]))
                          .squaredNorm();
     }
     const auto middle = squared.begin() + static_cast<std::ptrdiff_t>(squared.size() / 2);
@@ -177,6 +187,7 @@ PointDescriptors SpectralDescriptors::eigenfunction_descriptors(
         Eigen::MatrixXd map;
         double singular_value = 0;
         double moved = 0;  // summed distance between where the placement and the map put points
+        double discrepancy = 0;  // of the signatures over the map's correspondence
     };
     std::vector<Candidate> candidates;
     for (const Eigen::MatrixX3d& deformed : placements) {
@@ -187,6 +198,7 @@ PointDescriptors SpectralDescriptors::eigenfunction_descriptors(
             candidate.map = fitted_functional_map(template_functions_, template_masses_,
                                                   target_functions_, end, count);
             candidate.singular_value = mean_singular_value(candidate.map);
+            candidate.discrepancy = signature_discrepancy(end);
             for (std::size_t k = 0; k < end.size(); ++k) {
                 candidate.moved +=
                     (target_positions_.row(end[k]) - target_positions_.row(start[k])).norm();
@@ -194,21 +206,22 @@ PointDescriptors SpectralDescriptors::eigenfunction_descriptors(
             candidates.push_back(std::move(candidate));
         }
     }
-    // Equally orthogonal maps differ by a symmetry of the shape (the generated limb's flipped
-    // map was 0.005 more orthogonal and moved the points three times as far): each map is
-    // rated by its mean singular value minus how far it moves the placement's points, as a
-    // fraction of the diagonal.
+    // Each map is rated on its own correspondence as a match's intrinsic disagreement is,
+    // with the orthogonality less the motion of the placement's points (see the header: neither
+    // the signatures nor the motion alone tell every symmetric map from the right one).
     const Eigen::Index points = static_cast<Eigen::Index>(template_vertex_.size());
     const double per_point =
         1 /
         (static_cast<double>(points) *
          (target_positions_.colwise().maxCoeff() - target_positions_.colwise().minCoeff()).norm());
-    const auto rating = [&](const Candidate& candidate) {
-        return candidate.singular_value - per_point * candidate.moved;
+    const auto disagreement = [&](const Candidate& candidate) {
+        const double consistency = candidate.singular_value - per_point * candidate.moved;
+        return consistency > 0 ? candidate.discrepancy / consistency
+                               : std::numeric_limits<double>::infinity();
     };
     const Candidate* kept = &candidates.front();
     for (const Candidate& candidate : candidates) {
-        if (rating(candidate) > rating(*kept)) {
+        if (disagreement(candidate) < disagreement(*kept)) {
             kept = &candidate;
         }
     }

@@ -4,6 +4,7 @@
 // default fixed. No pre-alignment, no parts, no tuning.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -110,16 +111,16 @@ TEST(RealPairs, FullBodyKeepsItsHeadOnStraight) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no tosca_michael_0_1 in it";
     }
     EXPECT_LT(error->mean, 0.02);
-    // Nothing on a wrong part. Two vertices that seemed so lay at their place, where a
-    // fingertip touches the next finger (StrandedOptions::placement_tolerance). Three where the
-    // thighs touch are counted, 0.4 % of the diagonal from where they belong, since this match
-    // keeps its second opinion (disagreement 0.111, below
-    // MatchOptions::alternative_starts_above); the alternative start that replaced it before
-    // disagreed 0.1110 and stranded none.
+    // Nothing on a wrong part, which would put a vertex 10 % of the diagonal or more from its
+    // place. Two vertices that seemed so lay at their place, where a fingertip touches the next
+    // finger (StrandedOptions::placement_tolerance). 17 on the inner thighs, where they touch,
+    // are counted, up to 2.0 % of the diagonal from where they belong (three, up to 0.4 %,
+    // before the spectral view was made scale-free: a chaotic change of the near-tie
+    // decisions, with the same mean error to ±0.1 %).
     EXPECT_TRUE(few_stranded(*error));
     for (std::size_t i = 0; i < error->stranded.size(); ++i) {
         if (error->stranded[i]) {
-            EXPECT_LT(error->distance[static_cast<Eigen::Index>(i)], 0.01) << "vertex " << i;
+            EXPECT_LT(error->distance[static_cast<Eigen::Index>(i)], 0.025) << "vertex " << i;
         }
     }
     // Its hands landed palm for back (turned 164° and 171°, 1.13 % mean error, 5.7 % of the
@@ -189,11 +190,11 @@ TEST(RealPairs, HandFollowsTheFineMap) {
 }
 
 // The libigl arm with its bones (articulated): the rigid start leaves the upper arm turned
-// about its axis, which neither d_H nor the articulated prior undoes (4.04 % mean error). The
-// first fit to the fine map starts to unwind it (3.11 %); the maps ZoomOut finds from each
-// fitted level go on (the signatures' discrepancy −11, −8, −7 %) until they agree with it:
-// 1.89 % after four fits.
-TEST(RealPairs, ArticulatedArmUnwindsByRepeatedFits) {
+// about its axis, which neither d_H nor the articulated prior undoes (4.04 % mean error). Fits
+// to the fine map unwound it, 1.89 % after four, while the eigenfunctions' map was chosen by
+// its orthogonality; chosen by the signatures' agreement too, the coarsest level's map is
+// untwisted from the start: 1.32 % after one fit.
+TEST(RealPairs, ArticulatedArmEndsUntwisted) {
     const auto data = test::data_directory();
     const auto rig = data ? *data / "rigs" / "libigl_arm" : std::filesystem::path();
     const auto target_path =
@@ -214,7 +215,37 @@ TEST(RealPairs, ArticulatedArmUnwindsByRepeatedFits) {
     const CorrespondenceError error = correspondence_error(result.deformed.V, truth);
     std::printf("articulated arm: mean error %.4f, %ld stranded, %d fits to the fine map\n",
                 error.mean, static_cast<long>(error.stranded_count), result.map_fits);
-    EXPECT_GE(result.map_fits, 2);
+    EXPECT_LT(error.mean, 0.02);
+    EXPECT_TRUE(few_stranded(error)) << error.stranded_count;
+}
+
+// Issue 5: the inputs may differ by any rigid motion and scale. The libigl arm's target turned
+// over (157°) and shrunk to 0.3 % of its size: the spectral view compared functions of
+// different sizes (the disagreements 1/0.003 times too small) and chose the eigenfunctions'
+// map by its orthogonality, which preferred one twisted about the arm's axis: 7.3 % mean error,
+// 401 vertices stranded. Now as at the data's own frame and size: 1.54 %, 4 stranded
+// (bench/similar_pairs: all 24 random similarities of pairs.json below 1.8 %).
+TEST(RealPairs, ArmTurnedOverAndShrunkMatchesAsItIs) {
+    const auto data = test::data_directory();
+    const auto target_path =
+        data ? *data / "matching" / "remeshed" / "libigl_arm_rest_pose2_target_remeshed.ply"
+             : std::filesystem::path();
+    const auto rig = data ? *data / "rigs" / "libigl_arm" : std::filesystem::path();
+    if (!data || !std::filesystem::exists(target_path) ||
+        !std::filesystem::exists(rig / "arm_pose2.ply")) {
+        GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl arm in it";
+    }
+    Similarity motion;
+    motion.rotation = Eigen::Quaterniond(-0.2, 0.75, -0.62, -0.1).normalized().toRotationMatrix();
+    motion.scale = 0.003;
+    TriangleMesh target = read_mesh(target_path);
+    target.V = motion.apply(target.V);
+    TriangleMesh truth = read_mesh(rig / "arm_pose2.ply");
+    truth.V = motion.apply(truth.V);
+    const MatchResult result = match(read_mesh(rig / "arm_rest.ply"), target);
+    const CorrespondenceError error = correspondence_error(result.deformed.V, truth);
+    std::printf("arm turned over and shrunk: mean error %.4f, %ld stranded\n", error.mean,
+                static_cast<long>(error.stranded_count));
     EXPECT_LT(error.mean, 0.02);
     EXPECT_TRUE(few_stranded(error)) << error.stranded_count;
 }
@@ -433,27 +464,29 @@ std::optional<SimplifiedPair> elephant_pair() {
 }
 
 // The libigl elephant from its frame 100 to its frame 300 (docs/eval/posed_templates.json):
-// the template's stride puts each leg nearest the other's place, and without the check for
-// swapped limbs both pairs of legs are matched exchanged (7.7 % mean error in docs/eval, not
-// doubtful); exchanging them back makes the turning functions agree and the match right
-// (MatchOptions::swap_limbs). About 20 seconds.
-TEST(RealPairs, ElephantsLegsAreExchangedBack) {
+// the template's stride puts each leg nearest the other's place. Both pairs of legs were
+// matched exchanged (7.7 % mean error in docs/eval, not doubtful) while the eigenfunctions' map
+// was chosen by its orthogonality, and the check for swapped limbs (MatchOptions::swap_limbs)
+// exchanged them back. Chosen by the signatures' agreement too, the map puts the legs on their
+// own places already (1.28 % without the check), and the check leaves that match alone.
+// About 25 seconds.
+TEST(RealPairs, ElephantsLegsEndOnTheirOwnPlaces) {
     const std::optional<SimplifiedPair> pair = elephant_pair();
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl elephant in it";
     }
     MatchOptions options;
     options.swap_limbs = false;
-    const CorrespondenceError swapped = correspondence_error(
+    const CorrespondenceError unchecked = correspondence_error(
         match(pair->template_mesh, pair->target, options).deformed.V, pair->truth);
     const MatchResult result = match(pair->template_mesh, pair->target);
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf(
         "elephant 100 -> 300: mean error %.4f without the check, %.4f with it (%d pairs "
         "exchanged)\n",
-        swapped.mean, error.mean, result.swapped_limbs);
-    EXPECT_GT(swapped.mean, 0.05);
-    EXPECT_GE(result.swapped_limbs, 1);
+        unchecked.mean, error.mean, result.swapped_limbs);
+    EXPECT_LT(unchecked.mean, 0.025);
+    EXPECT_EQ(result.swapped_limbs, 0);
     EXPECT_LT(error.mean, 0.025);
 }
 
@@ -475,14 +508,13 @@ TEST(RealPairs, ElephantFromRestKeepsTheFitTheTurningFunctionsPrefer) {
     EXPECT_LT(error.mean, 0.02);
 }
 
-// The same pair as ElephantsLegsAreExchangedBack with the quasi-articulated prior and the
-// elephant's rig, posed at frame 100:
-// the coarsest level turns its legs and arms onto each other's places about the hips and
-// shoulders, which keeps the surface's orientation, so the check there sees nothing (0.48);
-// the fits to the fine map then reflect them into those places, where the refined level's
-// check does (0.18), and that level flowed again from the exchanged places is right (7.8 %
-// mean error in docs/eval without it). About 35 seconds.
-TEST(RealPairs, ArticulatedElephantsLimbsAreExchangedBackAtTheRefinedLevel) {
+// The same pair as ElephantsLegsEndOnTheirOwnPlaces with the quasi-articulated prior and the
+// elephant's rig, posed at frame 100: the coarsest level turned its legs and arms onto each
+// other's places about the hips and shoulders, and the refined level's check for swapped limbs
+// exchanged them back (7.8 % mean error in docs/eval without it). With the eigenfunctions' map
+// chosen by the signatures' agreement too, the limbs end on their own places (1.27 %) and no
+// check exchanges any. About 15 seconds.
+TEST(RealPairs, ArticulatedElephantsLimbsEndOnTheirOwnPlaces) {
     const std::optional<SimplifiedPair> pair = elephant_pair();
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl elephant in it";
@@ -498,7 +530,7 @@ TEST(RealPairs, ArticulatedElephantsLimbsAreExchangedBackAtTheRefinedLevel) {
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("articulated elephant 100 -> 300: mean error %.4f (%d pairs exchanged)\n",
                 error.mean, result.swapped_limbs);
-    EXPECT_GE(result.swapped_limbs, 1);
+    EXPECT_EQ(result.swapped_limbs, 0);
     EXPECT_LT(error.mean, 0.025);
 }
 
