@@ -1032,12 +1032,14 @@ TEST(Match, SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss) {
 // Asked only of results that disagree more than second_opinion_above, the second opinion comes
 // after the rigid starts' guided rounds (that it was given at all says their result, 0.175,
 // was above 0.14), and takes over the same match. With alternative_starts_above below its
-// result's 0.112, the alternative starts are tried as well, and the result is still right.
+// result's 0.112, an alternative start is tried as well (one: each is a whole coarsest match,
+// 5 minutes of the sanitizers' run for three), and the result is still right.
 TEST(Match, DisagreeingMatchTakesTheSecondOpinionAfterTheRigidStarts) {
     const test::PosedSpikedFigure figure;
     MatchOptions options;
     options.second_opinion_above = 0.14;
     options.alternative_starts_above = 0.1;
+    options.alternative_starts = 1;
     expect_second_opinion_kept(figure, match(figure.template_mesh, figure.target, options), true);
 }
 
