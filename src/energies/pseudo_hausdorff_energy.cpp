@@ -76,15 +76,17 @@ double log_sum_exp(const std::vector<double>& values) {
     return largest + std::log(sum);
 }
 
-// r^α for 0 < r ≤ 1, by repeated squaring when α is a small integer (the usual 8 or 16).
-// The default α = 8 is spelled out: the loop's shifts and branches cost as much as the products
-// in the innermost sums. It squares as the loop does, so the result is the same to the bit.
+// r^8, the default α spelled out: ratio_power()'s loop costs, in its shifts and branches, as
+// much as the products in the innermost sums. It squares as the loop does, so the result is the
+// same to the bit.
 double eighth_power(double r) {
     const double r2 = r * r;
     const double r4 = r2 * r2;
     return r4 * r4;
 }
 
+// r^α for 0 < r ≤ 1, by repeated squaring when α is a small integer (`integer_alpha`, the usual
+// 8 or 16), else by std::pow.
 double ratio_power(double r, double alpha, int integer_alpha) {
     if (integer_alpha == 8) {
         return eighth_power(r);
