@@ -5,10 +5,15 @@
 // random rotation, scaled by a log-uniform factor (10^-3 to 10^3 unless --scales says
 // otherwise) and moved; the template is left as it is. The meshes go to OUT_DIR, with
 // OUT_DIR/pairs.json naming them by absolute paths (the templates and part files too), so the
-// data directory is only read, never copied into.
+// data directory is only read, never copied into. A scanned target is also noisy and may be
+// sampled more sparsely than the template: --noise moves each target vertex along its normal by
+// a Gaussian of that standard deviation (a fraction of the diagonal), and --share takes as the
+// target the ground truth simplified to that share of its vertices (as "target_simplified"
+// does in `genflow eval`); the ground truth stays clean, so the error is still to the true
+// places.
 //
 // Usage: similar_pairs PAIRS.json OUT_DIR [--copies K] [--seed S] [--scales LOG10_SPREAD]
-//                      [--pairs NAME,NAME...]
+//                      [--noise SIGMA] [--share SHARE] [--pairs NAME,NAME...]
 // Then: genflow eval OUT_DIR/pairs.json --priors h1 --json
 #include <Eigen/Geometry>
 #include <cmath>
@@ -18,6 +23,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
@@ -25,8 +31,10 @@
 
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/write_mesh.h"
+#include "genflow/matching/multiresolution.h"
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/operators/mesh_size.h"
+#include "genflow/operators/normals.h"
 
 namespace {
 
@@ -49,6 +57,38 @@ genflow::Similarity random_similarity(std::mt19937_64& generator, double spread,
     return motion;
 }
 
+// The pair's target before it is moved: the ground truth simplified to `share` of its vertices
+// when that is given (else to the pair's own "target_simplified"), else its remeshed target.
+// Empty when the pair's file names no target and no share is given (eval simplifies it then).
+std::optional<genflow::TriangleMesh> unmoved_target(const nlohmann::json& pair,
+                                                    const fs::path& base,
+                                                    const genflow::TriangleMesh& truth,
+                                                    std::optional<double> share) {
+    if (!share && pair.contains("target_simplified")) {
+        share = pair.at("target_simplified").get<double>();
+    }
+    if (share) {
+        const auto vertices =
+            static_cast<Eigen::Index>(std::ceil(*share * static_cast<double>(truth.V.rows())));
+        return genflow::coarsen(truth, std::max<Eigen::Index>(vertices, 4)).mesh;
+    }
+    if (pair.contains("target_remeshed")) {
+        return genflow::read_mesh(base / pair.at("target_remeshed").get<std::string>());
+    }
+    return std::nullopt;
+}
+
+// `mesh` with each vertex moved along its normal by a Gaussian of deviation `sigma`.
+genflow::TriangleMesh with_noise(genflow::TriangleMesh mesh, double sigma,
+                                 std::mt19937_64& generator) {
+    std::normal_distribution<double> gaussian(0, sigma);
+    const Eigen::MatrixX3d normals = genflow::vertex_normals(mesh);
+    for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
+        mesh.V.row(v) += gaussian(generator) * normals.row(v);
+    }
+    return mesh;
+}
+
 std::set<std::string> split(const std::string& list) {
     std::set<std::string> names;
     std::stringstream stream(list);
@@ -62,7 +102,8 @@ int run(int argc, char** argv) {
     if (argc < 3) {
         std::fprintf(stderr,
                      "usage: similar_pairs PAIRS.json OUT_DIR [--copies K] [--seed S] "
-                     "[--scales LOG10_SPREAD] [--pairs NAME,...]\n");
+                     "[--scales LOG10_SPREAD] [--noise SIGMA] [--share SHARE] "
+                     "[--pairs NAME,...]\n");
         return 2;
     }
     const fs::path pairs_file = fs::absolute(argv[1]);
@@ -70,6 +111,8 @@ int run(int argc, char** argv) {
     int copies = 3;
     unsigned long long seed = 1;
     double spread = 3;
+    double noise = 0;
+    std::optional<double> share;
     std::set<std::string> only;
     for (int i = 3; i + 1 < argc; i += 2) {
         const std::string flag = argv[i];
@@ -79,6 +122,14 @@ int run(int argc, char** argv) {
             seed = std::stoull(argv[i + 1]);
         } else if (flag == "--scales") {
             spread = std::stod(argv[i + 1]);
+        } else if (flag == "--noise") {
+            noise = std::stod(argv[i + 1]);
+        } else if (flag == "--share") {
+            share = std::stod(argv[i + 1]);
+            if (!(*share > 0 && *share <= 1)) {
+                std::fprintf(stderr, "similar_pairs: --share must be in (0, 1]\n");
+                return 2;
+            }
         } else if (flag == "--pairs") {
             only = split(argv[i + 1]);
         } else {
@@ -103,11 +154,11 @@ int run(int argc, char** argv) {
         }
         const genflow::TriangleMesh truth =
             genflow::read_mesh(base / pair.at("target_ground_truth").get<std::string>());
-        const bool remeshed = pair.contains("target_remeshed");
-        const genflow::TriangleMesh target =
-            remeshed ? genflow::read_mesh(base / pair.at("target_remeshed").get<std::string>())
-                     : truth;
         const double diagonal = genflow::bounding_box_diagonal(truth);
+        // Written as the copy's own target when it differs from what eval would make of it.
+        const bool own_target = share || noise > 0 || pair.contains("target_remeshed");
+        const std::optional<genflow::TriangleMesh> target =
+            own_target ? unmoved_target(pair, base, truth, share) : std::nullopt;
         for (int copy = 0; copy < copies; ++copy) {
             const genflow::Similarity motion = random_similarity(generator, spread, diagonal);
             const std::string stem = name + "_similar" + std::to_string(copy);
@@ -123,9 +174,10 @@ int run(int argc, char** argv) {
             moved.V = motion.apply(truth.V);
             entry["target_ground_truth"] = (out / (stem + "_truth.ply")).string();
             genflow::write_mesh(entry["target_ground_truth"].get<std::string>(), moved);
-            if (remeshed) {
-                moved = target;
-                moved.V = motion.apply(target.V);
+            if (target) {
+                moved = noise > 0 ? with_noise(*target, noise * diagonal, generator) : *target;
+                moved.V = motion.apply(moved.V);
+                entry.erase("target_simplified");
                 entry["target_remeshed"] = (out / (stem + "_target.ply")).string();
                 genflow::write_mesh(entry["target_remeshed"].get<std::string>(), moved);
             }
@@ -138,6 +190,12 @@ int run(int argc, char** argv) {
                 {"rotation_quaternion_wxyz", {turn.w(), turn.x(), turn.y(), turn.z()}},
                 {"translation",
                  {motion.translation.x(), motion.translation.y(), motion.translation.z()}}};
+            if (noise > 0) {
+                entry["target_noise"] = noise;
+            }
+            if (share) {
+                entry["target_share"] = *share;
+            }
             written.push_back(entry);
             std::printf("%s: scale %.4g, turned %.1f degrees\n", stem.c_str(), motion.scale,
                         degrees);

@@ -85,7 +85,8 @@ struct MatchOptions {
     /// Multiresolution (paper §6.4, SPEC.md §9): the flow runs on QEM-coarsened template and
     /// target first, then on finer levels, each started from the coarser result carried over by
     /// rotation-interpolated offsets. `levels` = 0 chooses them: the coarsest has about
-    /// `coarse_vertices`, each finer one 4× more, up to the input.
+    /// `coarse_vertices`, each finer one 4× more, up to the input. Each target level is the target
+    /// coarsened by the template's factor, to no fewer than half the template level's vertices.
     int levels = 0;
     Eigen::Index coarse_vertices = 1000;
     /// An ε schedule (issue 5): the first half of the coarsest level's steps flows d_H with ε
