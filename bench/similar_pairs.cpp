@@ -68,9 +68,7 @@ std::optional<genflow::TriangleMesh> unmoved_target(const nlohmann::json& pair,
         share = pair.at("target_simplified").get<double>();
     }
     if (share) {
-        const auto vertices =
-            static_cast<Eigen::Index>(std::ceil(*share * static_cast<double>(truth.V.rows())));
-        return genflow::coarsen(truth, std::max<Eigen::Index>(vertices, 4)).mesh;
+        return genflow::coarsen_to_share(truth, *share).mesh;
     }
     if (pair.contains("target_remeshed")) {
         return genflow::read_mesh(base / pair.at("target_remeshed").get<std::string>());
@@ -124,6 +122,10 @@ int run(int argc, char** argv) {
             spread = std::stod(argv[i + 1]);
         } else if (flag == "--noise") {
             noise = std::stod(argv[i + 1]);
+            if (!(noise >= 0)) {
+                std::fprintf(stderr, "similar_pairs: --noise must be at least 0\n");
+                return 2;
+            }
         } else if (flag == "--share") {
             share = std::stod(argv[i + 1]);
             if (!(*share > 0 && *share <= 1)) {

@@ -83,9 +83,7 @@ TriangleMesh target_of(const std::filesystem::path& file, const std::filesystem:
         throw IoError(file.string() + ": pair " + name +
                       ": \"target_simplified\" must be a share of the vertices in (0, 1]");
     }
-    const auto vertices = static_cast<Eigen::Index>(
-        std::ceil(share->get<double>() * static_cast<double>(truth.V.rows())));
-    return coarsen(truth, std::max<Eigen::Index>(vertices, 4)).mesh;
+    return coarsen_to_share(truth, share->get<double>()).mesh;
 }
 
 // The mean distance of a stage's vertices from where the ground truth has them.

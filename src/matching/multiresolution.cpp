@@ -7,6 +7,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <numeric>
 #include <string>
 
@@ -21,6 +22,15 @@
 #include "spatial/surface_paths.h"
 
 namespace genflow {
+
+CoarseMesh coarsen_to_share(const TriangleMesh& mesh, double share) {
+    if (!detail::finite_above(share, 0) || share > 1) {  // isfinite first: NaN raises no trap
+        throw InvalidInput("coarsen_to_share: the share must be in (0, 1]");
+    }
+    const auto vertices =
+        static_cast<Eigen::Index>(std::ceil(share * static_cast<double>(mesh.V.rows())));
+    return coarsen(mesh, std::max<Eigen::Index>(vertices, 4));
+}
 
 CoarseMesh coarsen(const TriangleMesh& mesh, Eigen::Index target_vertices) {
     detail::require_valid_mesh(mesh, "coarsen");

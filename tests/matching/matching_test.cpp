@@ -204,6 +204,22 @@ TEST(Multiresolution, CoarseVerticesAreASubsetAndTransferIsExactForRigidMotions)
         1e-12);
 }
 
+// coarsen_to_share() keeps about that share of the vertices (coarsen() may stop a few collapses
+// short), all of them at share 1, and refuses a share outside (0, 1].
+TEST(Multiresolution, CoarsensToAShareOfTheVertices) {
+    const TriangleMesh fine = make_limb(4, 3);
+    const auto n = static_cast<double>(fine.V.rows());
+    for (const double share : {0.1, 0.5}) {
+        const CoarseMesh coarse = coarsen_to_share(fine, share);
+        EXPECT_GE(static_cast<double>(coarse.mesh.V.rows()), std::ceil(share * n)) << share;
+        EXPECT_LT(static_cast<double>(coarse.mesh.V.rows()), (share + 0.02) * n) << share;
+    }
+    EXPECT_EQ(coarsen_to_share(fine, 1).mesh.V.rows(), fine.V.rows());
+    for (const double share : {0.0, -0.5, 1.5, std::nan("")}) {
+        EXPECT_THROW(static_cast<void>(coarsen_to_share(fine, share)), InvalidInput) << share;
+    }
+}
+
 // A ball resting on a plate, as a hand on a thigh: the ball's lowest vertices are nearer to the
 // plate than to the coarse ball's faces, which cut inside the sphere. Embedded along the
 // surface, the ball stays where it is when the plate moves away; embedded in the closest face

@@ -269,9 +269,7 @@ std::optional<SimplifiedPair> simplified_pair(const std::filesystem::path& templ
         return std::nullopt;
     }
     SimplifiedPair pair{read_mesh(*data / template_path), read_mesh(*data / truth_path), {}};
-    const auto kept =
-        static_cast<Eigen::Index>(std::ceil(share * static_cast<double>(pair.truth.V.rows())));
-    pair.target = coarsen(pair.truth, kept).mesh;
+    pair.target = coarsen_to_share(pair.truth, share).mesh;
     return pair;
 }
 

@@ -27,6 +27,12 @@ struct CoarseMesh {
 ///         target_vertices < 4.
 [[nodiscard]] CoarseMesh coarsen(const TriangleMesh& mesh, Eigen::Index target_vertices);
 
+/// coarsen() to the share `share` of the mesh's vertices (rounded up, at least 4): another
+/// sampling and connectivity of the same surface, as `genflow eval` makes a target of a ground
+/// truth ("target_simplified").
+/// \throws InvalidInput if `share` is not in (0, 1], or as coarsen().
+[[nodiscard]] CoarseMesh coarsen_to_share(const TriangleMesh& mesh, double share);
+
 /// Where each fine vertex sits relative to a coarse mesh: on coarse face `face` at barycentric
 /// `barycentric`, plus the offset `offset` = p − Σ β_b x_b (SPEC.md §9, step 2).
 struct Embedding {
