@@ -382,21 +382,35 @@ KeptTerms weigh_terms(const Side& from, const Side& to, const Parameters& p, Eig
     const std::size_t count = found.count;
     const double* distances2 = found.distances2.data();
     const std::uint32_t* slots = found.slots.data();
-    double nearest2 = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < count; ++k) {
-        nearest2 = std::min(nearest2, distances2[k]);
+    // Two minima break the dependency chain of one (the minimum is exact in any order).
+    double nearest_even = std::numeric_limits<double>::infinity();
+    double nearest_odd = nearest_even;
+    std::size_t k = 0;
+    for (; k + 1 < count; k += 2) {
+        nearest_even = std::min(nearest_even, distances2[k]);
+        nearest_odd = std::min(nearest_odd, distances2[k + 1]);
     }
+    if (k < count) {
+        nearest_even = std::min(nearest_even, distances2[k]);
+    }
+    const double nearest2 = std::min(nearest_even, nearest_odd);
     const double eps2 = p.eps2;             // a local: the stores below could alias `p`
     const double d_star = nearest2 + eps2;  // κ_m ≥ 1: the point m itself is kept
     if (term_over_d.size() < count) {
         term_over_d.resize(std::max(count, 2 * term_over_d.size()));
     }
     double* out = term_over_d.data();
+    // The divisions first, in a loop of their own that the compiler vectorizes (they cost
+    // most, and the sum below keeps them from overlapping); correctly rounded, they are the
+    // same to the bit.
+    for (std::size_t j = 0; j < count; ++j) {
+        out[j] = 1 / (distances2[j] + eps2);
+    }
     // The power inlined for the default α = 8, the loop's other costs being a few operations.
     const auto weigh = [&](auto power) {
         double sum = 0;
         for (std::size_t j = 0; j < count; ++j) {
-            const double inverse_d = 1 / (distances2[j] + eps2);
+            const double inverse_d = out[j];
             const double t = grid.weight(slots[j]) * power(d_star * inverse_d);
             sum += t;
             out[j] = t * inverse_d;
