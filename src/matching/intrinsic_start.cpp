@@ -294,6 +294,15 @@ std::optional<IntrinsicStart> start_from_map(const TriangleMesh& template_mesh,
     return start;
 }
 
+void rescale(IntrinsicStart& start, const TriangleMesh& template_mesh, double scale) {
+    // The least-squares rotation between centred point sets does not depend on their scales.
+    const Eigen::Vector3d template_centre = template_mesh.V.colwise().mean().transpose();
+    const Eigen::Vector3d placement_centre = start.placement.colwise().mean().transpose();
+    start.similarity.scale = scale;
+    start.similarity.translation =
+        placement_centre - scale * start.similarity.rotation * template_centre;
+}
+
 std::optional<IntrinsicStart> intrinsic_start(const TriangleMesh& template_mesh,
                                               const TriangleMesh& target) {
     std::vector<IntrinsicStart> starts = intrinsic_starts(template_mesh, target, 1);

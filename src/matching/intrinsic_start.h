@@ -66,6 +66,11 @@ struct IntrinsicStart {
                                                            const IntrinsicShape& to,
                                                            std::size_t count);
 
+/// `start` (of `template_mesh`) at another similarity scale: the same rotation, and the
+/// translation that fits the placement best at that scale (as start_from_map() fits it at the
+/// areas' scale).
+void rescale(IntrinsicStart& start, const TriangleMesh& template_mesh, double scale);
+
 /// The start that puts each vertex of `template_mesh` (the mesh `from` analyses) where `map`
 /// (a vertex of `to` per vertex of `from`) puts its nearest analysed vertex, and the
 /// similarity that agrees with it (`landmarks` and `orientation` left 0); std::nullopt if it

@@ -19,11 +19,13 @@
 #include "genflow/matching/multiresolution.h"
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
+#include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
 #include "matching/fine_spectrum.h"
 #include "matching/intrinsic_start.h"
 #include "matching/map_fit.h"
 #include "matching/side_by_side.h"
+#include "matching/similarity_scale.h"
 #include "matching/spectral_descriptors.h"
 #include "matching/swapped_limbs.h"
 #include "matching/turned_parts.h"
@@ -351,6 +353,15 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
             }
         }
     }
+
+    // Where the areas mislead (a rough target or template), the intrinsic starts take the
+    // volumes' scale, as the rigid starts do (similarity_scale.h).
+    const std::optional<double> volume_scale =
+        options.align && options.alignment.allow_scaling
+            ? detail::volume_scale_where_areas_mislead(
+                  template_mesh, target,
+                  std::sqrt(surface_area(target) / surface_area(template_mesh)))
+            : std::nullopt;
     result.alignment_seconds = seconds_since(start);
 
     auto clock = std::chrono::steady_clock::now();
@@ -651,6 +662,11 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 intrinsic = detail::intrinsic_starts(
                     coarsest.template_mesh, shapes->first, shapes->second,
                     1 + static_cast<std::size_t>(options.alternative_starts));
+                if (volume_scale) {
+                    for (detail::IntrinsicStart& intrinsic_start : intrinsic) {
+                        detail::rescale(intrinsic_start, coarsest.template_mesh, *volume_scale);
+                    }
+                }
             } catch (const SolverError&) {
                 intrinsic.clear();
             }

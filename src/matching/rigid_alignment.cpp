@@ -14,6 +14,7 @@
 #include "genflow/energies/pseudo_hausdorff_energy.h"
 #include "genflow/exceptions.h"
 #include "genflow/operators/mass_matrix.h"
+#include "matching/similarity_scale.h"
 #include "operators/triangle.h"
 
 namespace genflow {
@@ -236,8 +237,13 @@ std::vector<RigidAlignment> rigid_alignment_candidates(const TriangleMesh& movin
         throw InvalidInput("align_rigidly: a mesh has zero area");
     }
     // The scale from the areas: unlike sizes or principal radii, area does not change with the
-    // pose of an articulated or near-isometric shape.
-    const double scale = options.allow_scaling ? std::sqrt(b.masses.sum() / a.masses.sum()) : 1.0;
+    // pose of an articulated or near-isometric shape. From the volumes where the areas mislead
+    // (a rough surface: similarity_scale.h).
+    double scale = 1;
+    if (options.allow_scaling) {
+        scale = std::sqrt(b.masses.sum() / a.masses.sum());
+        scale = detail::volume_scale_where_areas_mislead(moving, fixed, scale).value_or(scale);
+    }
     const Frame fa = principal_frame(a);
     const Frame fb = principal_frame(b);
     const double diagonal = (b.points.colwise().maxCoeff() - b.points.colwise().minCoeff()).norm();

@@ -28,19 +28,33 @@ std::vector<std::pair<int, int>> sorted_face_edges(const Eigen::MatrixX3i& F) {
 
 }  // namespace
 
-std::vector<bool> boundary_vertices(const Eigen::MatrixX3i& F, Eigen::Index num_vertices) {
+Eigen::MatrixX2i boundary_edges(const Eigen::MatrixX3i& F) {
     const auto edges = sorted_face_edges(F);
-    std::vector<bool> boundary(static_cast<std::size_t>(num_vertices), false);
+    std::vector<std::pair<int, int>> once;
     for (std::size_t i = 0; i < edges.size();) {
         std::size_t j = i;
         while (j < edges.size() && edges[j] == edges[i]) {
             ++j;
         }
         if (j - i == 1) {
-            boundary[static_cast<std::size_t>(edges[i].first)] = true;
-            boundary[static_cast<std::size_t>(edges[i].second)] = true;
+            once.push_back(edges[i]);
         }
         i = j;
+    }
+    Eigen::MatrixX2i E(static_cast<Eigen::Index>(once.size()), 2);
+    for (std::size_t e = 0; e < once.size(); ++e) {
+        E(static_cast<Eigen::Index>(e), 0) = once[e].first;
+        E(static_cast<Eigen::Index>(e), 1) = once[e].second;
+    }
+    return E;
+}
+
+std::vector<bool> boundary_vertices(const Eigen::MatrixX3i& F, Eigen::Index num_vertices) {
+    const Eigen::MatrixX2i edges = boundary_edges(F);
+    std::vector<bool> boundary(static_cast<std::size_t>(num_vertices), false);
+    for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+        boundary[static_cast<std::size_t>(edges(e, 0))] = true;
+        boundary[static_cast<std::size_t>(edges(e, 1))] = true;
     }
     return boundary;
 }

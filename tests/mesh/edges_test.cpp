@@ -38,6 +38,28 @@ TEST(Edges, BoundaryVerticesOfAGridAndAClosedMesh) {
     EXPECT_EQ(std::count(none.begin(), none.end(), true), 0);
 }
 
+// A 4×4 grid's boundary is its 16 outer edges, each on the unit square's sides; two triangles
+// sharing an edge have the other four.
+TEST(Edges, BoundaryEdgesOfAGridTwoTrianglesAndAClosedMesh) {
+    const TriangleMesh grid = make_grid(4);
+    const Eigen::MatrixX2i edges = boundary_edges(grid.F);
+    ASSERT_EQ(edges.rows(), 16);
+    for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+        const Eigen::RowVector3d a = grid.V.row(edges(e, 0));
+        const Eigen::RowVector3d b = grid.V.row(edges(e, 1));
+        EXPECT_LT(edges(e, 0), edges(e, 1));
+        EXPECT_TRUE((a.x() == b.x() && (a.x() == 0 || a.x() == 1)) ||
+                    (a.y() == b.y() && (a.y() == 0 || a.y() == 1)))
+            << a << " — " << b;
+    }
+    Eigen::MatrixX3i F(2, 3);
+    F << 2, 1, 0, 1, 2, 3;
+    Eigen::MatrixX2i expected(4, 2);
+    expected << 0, 1, 0, 2, 1, 3, 2, 3;
+    EXPECT_EQ(boundary_edges(F), expected);
+    EXPECT_EQ(boundary_edges(make_icosphere(2).F).rows(), 0);
+}
+
 // Each vertex of a 4×4 grid has as many neighbours as edges at it (2 to 6), each edge seen
 // from both ends; on an icosphere, 5 at the 12 original corners and 6 elsewhere.
 TEST(Edges, VertexNeighboursAreTheOneRings) {

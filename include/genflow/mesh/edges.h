@@ -11,6 +11,10 @@ namespace genflow {
 /// their non-degenerate edges only.
 [[nodiscard]] Eigen::MatrixX2i unique_edges(const Eigen::MatrixX3i& F);
 
+/// The edges of F used by exactly one face, as rows (i, j) with i < j, sorted (as
+/// unique_edges()); none for a closed mesh.
+[[nodiscard]] Eigen::MatrixX2i boundary_edges(const Eigen::MatrixX3i& F);
+
 /// One flag per vertex (size `num_vertices`): true for the vertices of boundary edges, the
 /// edges used by exactly one face. Indices must lie in [0, num_vertices).
 [[nodiscard]] std::vector<bool> boundary_vertices(const Eigen::MatrixX3i& F,
