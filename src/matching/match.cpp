@@ -21,6 +21,7 @@
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
+#include "genflow/smoothing/smoothing.h"
 #include "matching/fine_spectrum.h"
 #include "matching/intrinsic_start.h"
 #include "matching/map_fit.h"
@@ -214,8 +215,10 @@ struct Level {
 // Finest first. The template levels are nested (each coarsened from the previous), so their
 // vertices are subsets of the finer ones; each target level has about as many vertices as
 // the template level when the inputs are alike, and never fewer than half.
+// `coarse_source`: what the coarsest target level is coarsened from (the target, or the
+// target smoothed); the others are coarsened from the target.
 std::vector<Level> build_pyramid(const TriangleMesh& template_mesh, const TriangleMesh& target,
-                                 const MatchOptions& options) {
+                                 const TriangleMesh& coarse_source, const MatchOptions& options) {
     int count = options.levels;
     if (count <= 0) {
         count = 1;
@@ -249,7 +252,7 @@ std::vector<Level> build_pyramid(const TriangleMesh& template_mesh, const Triang
             target.V.rows(),
             std::max({static_cast<Eigen::Index>(ratio * static_cast<double>(target.V.rows())),
                       coarser.template_mesh.V.rows() / 2, Eigen::Index{100}}));
-        coarser.target = coarsen(target, target_size).mesh;
+        coarser.target = coarsen(l == count - 1 ? coarse_source : target, target_size).mesh;
         levels.push_back(std::move(coarser));
     }
     return levels;
@@ -356,16 +359,29 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
 
     // Where the areas mislead (a rough target or template), the intrinsic starts take the
     // volumes' scale, as the rigid starts do (similarity_scale.h).
+    const double area_scale = std::sqrt(surface_area(target) / surface_area(template_mesh));
     const std::optional<double> volume_scale =
         options.align && options.alignment.allow_scaling
-            ? detail::volume_scale_where_areas_mislead(
-                  template_mesh, target,
-                  std::sqrt(surface_area(target) / surface_area(template_mesh)))
+            ? detail::volume_scale_where_areas_mislead(template_mesh, target, area_scale)
             : std::nullopt;
     result.alignment_seconds = seconds_since(start);
 
     auto clock = std::chrono::steady_clock::now();
-    const std::vector<Level> pyramid = build_pyramid(template_mesh, target, options);
+    // A target rougher than its shape (more area than its volume gives it) has its coarsest
+    // level made from it smoothed by a step of implicit fairing (Δt = 0.5 h²): QEM keeps much
+    // of a scan's noise, whose signatures and eigenfunctions then tied right and front-to-back
+    // matches (docs/eval/results.md, "Sparse and noisy targets"). The finer levels keep the
+    // target as it is: smoothed, they followed the fairing's shrinkage.
+    std::optional<TriangleMesh> smoothed_target;
+    if (volume_scale && area_scale > *volume_scale) {
+        try {
+            smoothed_target = implicit_fairing(target, {.time_step = 0.5, .steps = 1}).mesh;
+        } catch (const SolverError&) {
+            // The target as it is, then.
+        }
+    }
+    const std::vector<Level> pyramid =
+        build_pyramid(template_mesh, target, smoothed_target ? *smoothed_target : target, options);
     const int count = static_cast<int>(pyramid.size());
     const double pyramid_seconds = seconds_since(clock);
 
