@@ -34,36 +34,54 @@ namespace {
 // 9 % off, where the forearm meets the upper arm). The h1 matches of `pairs.json` strand none.
 constexpr double kStrandedFraction = 0.005;
 
-// match() with its defaults (or `options`) on one pair of $GENFLOW_DATA/pairs.json (template,
-// remeshed target in another pose, ground truth): its error against the ground truth.
-CorrespondenceError default_match_error(const std::filesystem::path& data,
-                                        const nlohmann::json& pair,
-                                        const MatchOptions& options = {}) {
-    const TriangleMesh template_mesh = read_mesh(data / pair["template"].get<std::string>());
-    const TriangleMesh target = read_mesh(data / pair["target_remeshed"].get<std::string>());
-    const TriangleMesh truth = read_mesh(data / pair["target_ground_truth"].get<std::string>());
-    const MatchResult result = match(template_mesh, target, options);
-    CorrespondenceError error = correspondence_error(result.deformed.V, truth);
-    std::printf(
-        "%s: mean error %.4f, %ld stranded, kept stretch weight %.3g, refinement guidance %.3g\n",
-        pair["name"].get<std::string>().c_str(), error.mean,
-        static_cast<long>(error.stranded_count), result.stretch_weight, result.refinement_guidance);
-    return error;
+// One pair of $GENFLOW_DATA/pairs.json, read: template, remeshed target in another pose, and
+// ground truth.
+struct DataPair {
+    std::string name;
+    TriangleMesh template_mesh;
+    TriangleMesh target;
+    TriangleMesh truth;
+};
+
+DataPair read_pair(const std::filesystem::path& data, const nlohmann::json& pair) {
+    return {pair["name"].get<std::string>(), read_mesh(data / pair["template"].get<std::string>()),
+            read_mesh(data / pair["target_remeshed"].get<std::string>()),
+            read_mesh(data / pair["target_ground_truth"].get<std::string>())};
 }
 
-// The same on the pair so named; nothing without the data or that pair.
-std::optional<CorrespondenceError> default_match_error(const std::string& name,
-                                                       const MatchOptions& options = {}) {
+// The pair so named; nothing without the data or that pair.
+std::optional<DataPair> named_pair(const std::string& name) {
     const auto data = test::data_directory();
     if (!data) {
         return std::nullopt;
     }
     for (const auto& pair : nlohmann::json::parse(std::ifstream(*data / "pairs.json"))) {
         if (pair["name"] == name) {
-            return default_match_error(*data, pair, options);
+            return read_pair(*data, pair);
         }
     }
     return std::nullopt;
+}
+
+// match() with its defaults (or `options`) on `pair`: its error against the ground truth.
+CorrespondenceError default_match_error(const DataPair& pair, const MatchOptions& options = {}) {
+    const MatchResult result = match(pair.template_mesh, pair.target, options);
+    CorrespondenceError error = correspondence_error(result.deformed.V, pair.truth);
+    std::printf(
+        "%s: mean error %.4f, %ld stranded, kept stretch weight %.3g, refinement guidance %.3g\n",
+        pair.name.c_str(), error.mean, static_cast<long>(error.stranded_count),
+        result.stretch_weight, result.refinement_guidance);
+    return error;
+}
+
+// The same on the pair so named; nothing without the data or that pair.
+std::optional<CorrespondenceError> default_match_error(const std::string& name,
+                                                       const MatchOptions& options = {}) {
+    const std::optional<DataPair> pair = named_pair(name);
+    if (!pair) {
+        return std::nullopt;
+    }
+    return default_match_error(*pair, options);
 }
 
 // Whether no more than kStrandedFraction of the vertices are stranded.
@@ -95,7 +113,7 @@ TEST(RealPairs, SmallPairsMatchWithoutAFlippedStart) {
         if (!name.ends_with("_small")) {
             continue;
         }
-        const CorrespondenceError error = default_match_error(*data, pair);
+        const CorrespondenceError error = default_match_error(read_pair(*data, pair));
         EXPECT_LT(error.mean, 0.02) << name;
         EXPECT_EQ(error.stranded_count, 0) << name;
         error_sum += error.mean;
@@ -230,24 +248,17 @@ TEST(RealPairs, ArticulatedArmEndsUntwisted) {
 // 401 vertices stranded. Now as at the data's own frame and size: 1.54 %, 4 stranded
 // (bench/similar_pairs: all 24 random similarities of pairs.json below 1.8 %).
 TEST(RealPairs, ArmTurnedOverAndShrunkMatchesAsItIs) {
-    const auto data = test::data_directory();
-    const auto target_path =
-        data ? *data / "matching" / "remeshed" / "libigl_arm_rest_pose2_target_remeshed.ply"
-             : std::filesystem::path();
-    const auto rig = data ? *data / "rigs" / "libigl_arm" : std::filesystem::path();
-    if (!data || !std::filesystem::exists(target_path) ||
-        !std::filesystem::exists(rig / "arm_pose2.ply")) {
-        GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl arm in it";
+    std::optional<DataPair> pair = named_pair("libigl_arm_rest_pose2");
+    if (!pair) {
+        GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl_arm_rest_pose2 in it";
     }
     Similarity motion;
     motion.rotation = Eigen::Quaterniond(-0.2, 0.75, -0.62, -0.1).normalized().toRotationMatrix();
     motion.scale = 0.003;
-    TriangleMesh target = read_mesh(target_path);
-    target.V = motion.apply(target.V);
-    TriangleMesh truth = read_mesh(rig / "arm_pose2.ply");
-    truth.V = motion.apply(truth.V);
-    const MatchResult result = match(read_mesh(rig / "arm_rest.ply"), target);
-    const CorrespondenceError error = correspondence_error(result.deformed.V, truth);
+    pair->target.V = motion.apply(pair->target.V);
+    pair->truth.V = motion.apply(pair->truth.V);
+    const MatchResult result = match(pair->template_mesh, pair->target);
+    const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("arm turned over and shrunk: mean error %.4f, %ld stranded\n", error.mean,
                 static_cast<long>(error.stranded_count));
     EXPECT_LT(error.mean, 0.02);
@@ -271,17 +282,12 @@ TriangleMesh rough(TriangleMesh mesh, double sigma) {
 // areas' ratio made the template 22 % too large, lengths that the stretching energy then holds;
 // the volumes' scale, taken where the two disagree (similarity_scale.h), is the arm's own.
 TEST(RealPairs, RoughArmTargetGetsStartsAtItsSize) {
-    const auto data = test::data_directory();
-    const auto target_path =
-        data ? *data / "matching" / "remeshed" / "libigl_arm_rest_pose2_target_remeshed.ply"
-             : std::filesystem::path();
-    const auto rig = data ? *data / "rigs" / "libigl_arm" : std::filesystem::path();
-    if (!data || !std::filesystem::exists(target_path) ||
-        !std::filesystem::exists(rig / "arm_rest.ply")) {
-        GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl arm in it";
+    const std::optional<DataPair> pair = named_pair("libigl_arm_rest_pose2");
+    if (!pair) {
+        GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl_arm_rest_pose2 in it";
     }
-    const TriangleMesh target = rough(read_mesh(target_path), 0.005);
-    const TriangleMesh template_mesh = read_mesh(rig / "arm_rest.ply");
+    const TriangleMesh target = rough(pair->target, 0.005);
+    const TriangleMesh& template_mesh = pair->template_mesh;
     const double area_scale = std::sqrt(surface_area(target) / surface_area(template_mesh));
     std::printf("rough arm: the areas' scale %.4f\n", area_scale);
     EXPECT_GT(area_scale, 1.15);
@@ -299,19 +305,12 @@ TEST(RealPairs, RoughArmTargetGetsStartsAtItsSize) {
 // (similarity_scale.h) now has its coarsest level made from it smoothed by a step of implicit
 // fairing: 2.1 %, 9 stranded. About half a minute.
 TEST(RealPairs, RoughBodyIsChosenOnItsTargetSmoothed) {
-    const auto data = test::data_directory();
-    const auto target_path =
-        data ? *data / "matching" / "remeshed" / "tosca_michael_0_1_target_remeshed.ply"
-             : std::filesystem::path();
-    const auto tosca = data ? *data / "matching" / "tosca" : std::filesystem::path();
-    if (!data || !std::filesystem::exists(target_path) ||
-        !std::filesystem::exists(tosca / "michael1.ply")) {
-        GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no TOSCA michael in it";
+    const std::optional<DataPair> pair = named_pair("tosca_michael_0_1");
+    if (!pair) {
+        GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no tosca_michael_0_1 in it";
     }
-    const TriangleMesh target = rough(read_mesh(target_path), 0.005);
-    const MatchResult result = match(read_mesh(tosca / "michael0.ply"), target);
-    const CorrespondenceError error =
-        correspondence_error(result.deformed.V, read_mesh(tosca / "michael1.ply"));
+    const MatchResult result = match(pair->template_mesh, rough(pair->target, 0.005));
+    const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("rough michael: mean error %.4f, %ld stranded\n", error.mean,
                 static_cast<long>(error.stranded_count));
     EXPECT_LT(error.mean, 0.025);
