@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -68,6 +69,33 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(lines, template_mesh.V.rows());
     EXPECT_TRUE(std::filesystem::exists(directory / "frames" / "frame_00000.ply"));
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(directory / "summary.json")), json);
+}
+
+// --stagnation-tolerance reaches the flows: a loose one stops the coarsest level's flow sooner.
+TEST(MatchCli, StagnationToleranceStopsTheFlowSooner) {
+    const test::TemporaryDirectory directory;
+    TriangleMesh target = make_limb(4, 5);
+    target.V.col(0) *= 1.1;  // a stretch the rigid prior cannot follow, so its flow creeps on
+    write_mesh(directory / "template.ply", make_limb(3));
+    write_mesh(directory / "target.ply", target);
+    const std::string command =
+        "match " + quoted(directory / "template.ply") + " " + quoted(directory / "target.ply") +
+        " -o " + quoted(directory / "out.ply") + " --prior rigid --iterations 200 --json";
+    const auto coarsest_steps = [&](const std::string& extra) {
+        const auto result = run_genflow(command + extra);
+        EXPECT_EQ(result.exit_code, 0) << result.err;
+        return result.exit_code == 0
+                   ? nlohmann::json::parse(result.out)["levels"].back()["iterations"].get<int>()
+                   : -1;
+    };
+    const int by_default = coarsest_steps("");
+    const int loose = coarsest_steps(" --stagnation-tolerance 0.05");
+    std::printf("coarsest level: %d steps by default, %d at 0.05\n", by_default, loose);
+    EXPECT_GE(loose, 20);  // the stagnation window
+    EXPECT_LT(loose, by_default);
+    const auto refused = run_genflow(command + " --stagnation-tolerance -1");
+    EXPECT_NE(refused.exit_code, 0);
+    EXPECT_NE(refused.err.find("--stagnation-tolerance"), std::string::npos) << refused.err;
 }
 
 TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
