@@ -195,10 +195,11 @@ void register_match_command(CLI::App& app) {
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     command
-        ->add_option("--stagnation-tolerance", options->match.stagnation_tolerance,
-                     "A flow stops when its energy fell by less than this fraction over 20 steps "
-                     "(3e-3: 15-40 % faster at the same mean error, but near-tied choices between "
-                     "starts then go either way)")
+        ->add_option(
+            "--stagnation-tolerance", options->match.stagnation_tolerance,
+            "A flow stops when its energy fell by less than this fraction over 20 steps "
+            "(3e-3: 15-30 % faster at about the same mean error, but near-tied choices between "
+            "starts then go either way)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     command

@@ -114,11 +114,11 @@ struct MatchOptions {
     /// 0.83 %), their near-tied choices going the other way.
     bool implicit = false;
     /// Converged when d_H fell by less than this fraction over the last 20 steps. Most of the
-    /// coarsest level's flows creep on by 0.2–0.5 % per 20 steps until max_iterations; 3e-3
-    /// stops them sooner and makes matches 15–40 % faster at the same mean error (h1 on the 12
-    /// pairs of docs/eval/results.md: 174 → 123 s, 1.04 %), but the choices between contenders
-    /// that tie then go either way, some results better and some worse (results.md, "Flows that
-    /// stop sooner"): a trade a user may make, not the default.
+    /// coarsest level's flows creep on by 0.2–0.5 % per 25 steps until max_iterations; 3e-3
+    /// stops them sooner and makes matches 15–30 % faster at about the same mean error (h1 on
+    /// the 12 pairs of docs/eval/results.md: 174 → 123 s, 1.04 %), but the choices between
+    /// contenders that tie then go either way, some results better and some worse (results.md,
+    /// "Flows that stop sooner"): a trade a user may make, not the default.
     double stagnation_tolerance = 1e-3;
     /// Start from a global rigid alignment (so inputs need no pre-alignment). Between
     /// articulated poses the best rigid fit is often a flipped one (the TOSCA cat and horse
