@@ -55,7 +55,8 @@ FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy, Metr
         return result;
     }
     result.status = FlowStatus::MaxSteps;
-    double step_size = 0;  // τ of the last accepted step; 0 before the first
+    double step_size = 0;      // τ of the last accepted step; 0 before the first
+    bool backtracked = false;  // whether that step's first τ was refused
     while (result.steps < options.max_steps) {
         if (value <= options.target_energy) {
             result.status = FlowStatus::Converged;
@@ -100,11 +101,15 @@ FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy, Metr
         // as τ grows, so τ may grow past the explicit cap; the displacement is checked per τ.
         const double cap = options.max_displacement / largest;
         const double longest_tau = options.implicit ? kImplicitGrowth * cap : cap;
-        double tau = step_size > 0 ? std::min(2 * step_size, longest_tau) : cap;
+        // Twice the last τ after a step taken at once; after one that had to backtrack, the τ
+        // it took, which twice over overshot (DescentOptions::double_after_backtracking).
+        const double growth = backtracked && !options.double_after_backtracking ? 1 : 2;
+        double tau = step_size > 0 ? std::min(growth * step_size, longest_tau) : cap;
         TriangleMesh trial = result.mesh;
         bool accepted = false;
         double trial_value = value;
-        for (int halving = 0; halving <= kMaxHalvings; ++halving, tau /= 2) {
+        int halving = 0;
+        for (; halving <= kMaxHalvings; ++halving, tau /= 2) {
             VertexField direction = g;
             double decrease = slope;
             if (options.implicit) {
@@ -133,6 +138,7 @@ FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy, Metr
             break;
         }
         step_size = tau;
+        backtracked = halving > 0;
         result.mesh = std::move(trial);
         value = trial_value;
         ++result.steps;

@@ -91,7 +91,10 @@ std::optional<std::size_t> first_kept_fit(const FitRating& current,
                                           const std::vector<FitRating>& fitted, double progress) {
     for (std::size_t k = 0; k < fitted.size(); ++k) {
         const bool turns_worse = fitted[k].turning < current.turning - kMapFitTurningGain;
-        if (keeps_fit(current, fitted[k], progress) && (k == 0 || !turns_worse)) {
+        const bool clearly_better =
+            fitted[k].discrepancy < (1 - kMapFitProgress) * current.discrepancy;
+        if (keeps_fit(current, fitted[k], progress) &&
+            !(turns_worse && (k > 0 || !clearly_better))) {
             return k;
         }
     }

@@ -63,6 +63,11 @@ inline constexpr double kMapTear = 3;
                                              const Eigen::MatrixX3d& placement, double length,
                                              const Eigen::VectorXd& weights = {});
 
+/// The share by which a fit after the first must lower the signatures' discrepancy: more than
+/// it changes between the successive maps of a converged fit (−2.0 … +4.6 % on the 10 results
+/// measured, docs/eval/results.md).
+inline constexpr double kMapFitProgress = 0.05;
+
 /// How well a match agrees with its target intrinsically, before or after a fit.
 struct FitRating {
     /// The heat kernel signatures' discrepancy (SpectralDescriptors::discrepancy()); lower is
@@ -103,7 +108,12 @@ inline constexpr double kMapFitTurningDiscrepancy = 0.1;
 /// the match's own left and right, so its fit is not kept either if it lowers the turning
 /// agreement by more than kMapFitTurningGain (the MakeHuman body pose1→pose3, 0.76 → 0.62 with
 /// the signatures 5 % better: 0.83 → 1.50 %; the twelve other fallbacks kept on docs/eval moved
-/// it by −0.01 … +0.18).
+/// it by −0.01 … +0.18). Nor is the first map's, unless its signatures agree better by more
+/// than kMapFitProgress, the noise of converged fits: the libigl arm rest→pose 2 (h1, with the
+/// step held after backtracking) went 0.44 → 0.23 with the signatures 0.4 % better, its
+/// forearm twisted half a turn (14 % of its area turned over instead of 1.4 %), while the
+/// MakeHuman hand's articulated match went 0.68 → 0.12 with them 41 % better, and right
+/// (3.0 → 1.4 %): the turning functions of five fingers tell less than the signatures then.
 [[nodiscard]] std::optional<std::size_t> first_kept_fit(const FitRating& current,
                                                         const std::vector<FitRating>& fitted,
                                                         double progress);

@@ -147,10 +147,6 @@ namespace {
 // MatchOptions::map_fits: the smoothing length of a fit over the target's bounding-box
 // diagonal.
 constexpr double kMapFitLength = 0.01;
-// The share by which a fit after the first must lower the signatures' discrepancy: more than
-// it changes between the successive maps of a converged fit (−2.0 … +4.6 % on the 10 results
-// measured, docs/eval/results.md).
-constexpr double kMapFitProgress = 0.05;
 // MatchOptions::second_opinion_above, alternative_starts: how much less an intrinsic start's
 // result must disagree than the rigid starts' best to replace it. The disagreement ranks
 // results that are far apart well (TOSCA michael kneeling: 0.14 from the intrinsic start,
@@ -974,7 +970,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     // and the map was not mirrored (detail::keeps_fit()). ZoomOut finds a map from each of
     // kFineMapFirstSizes; the fits to them run side by side, and the first kept in that order
     // is kept (detail::first_kept_fit()). Each further fit starts from the maps of the level as
-    // last fitted and must do clearly better (kMapFitProgress).
+    // last fitted and must do clearly better (detail::kMapFitProgress).
     const auto fit_to_map = [&](int l, const detail::FineSpectrum& spectrum, FlowResult& flow,
                                 std::vector<detail::VertexMap> maps) {
         // Every map of the spectrum has as many functions as the first.
@@ -1016,7 +1012,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                 return;
             }
             const std::optional<std::size_t> kept =
-                detail::first_kept_fit(rating, ratings, fit == 0 ? 0 : kMapFitProgress);
+                detail::first_kept_fit(rating, ratings, fit == 0 ? 0 : detail::kMapFitProgress);
             if (!kept) {
                 return;
             }

@@ -90,6 +90,23 @@ bool few_stranded(const CorrespondenceError& error) {
            kStrandedFraction * static_cast<double>(error.distance.size());
 }
 
+// Where two parts of the ground truth touch (the thighs, a hand on a thigh), a vertex a little
+// off its place may be nearer the other part, and count as stranded: this many of the
+// diagonal from its place is a contact, not a limb on another (which is 10 % or more).
+constexpr double kContactDistance = 0.025;
+
+// Few stranded, each within kContactDistance of its place: nothing on a wrong part. `name`
+// labels the failures.
+void expect_stranded_only_at_contacts(const CorrespondenceError& error, const std::string& name) {
+    EXPECT_TRUE(few_stranded(error)) << name << ": " << error.stranded_count << " stranded";
+    for (std::size_t i = 0; i < error.stranded.size(); ++i) {
+        if (error.stranded[i]) {
+            EXPECT_LT(error.distance[static_cast<Eigen::Index>(i)], kContactDistance)
+                << name << ": vertex " << i;
+        }
+    }
+}
+
 // The TOSCA cat's best rigid fit is turned head to tail (41 % mean error when the lowest d_H
 // chose the start), FAUST's second best is turned front to back; the signatures make the flows
 // pick the right start (mean errors over the diagonal: cat 6.7 %, FAUST 3.0 %, centaur 3.9 %).
@@ -100,6 +117,11 @@ bool few_stranded(const CorrespondenceError& error) {
 // template from sliding along the target: cat 2.4 %, FAUST 0.9 %, centaur 1.1 % (average 1.5 %;
 // with the stiffer candidates of that round, FAUST 0.8 %), and the refining flows of the next
 // level put the cat's points nearer their places: 1.8 % (MatchOptions::refinement_guidances).
+// A flipped start strands hundreds of vertices far from their places; small FAUST's near ties
+// have ended either at 0.85 % with none stranded or at 0.75 % with two, where a hand meets a
+// thigh, 2.3 and 2.5 % of the diagonal from their places (the latter on the AMD EPYC 9004 of
+// the forty-third session, the same with one to four threads, other BLAS kernels and libm
+// variants): contacts, not a flip.
 TEST(RealPairs, SmallPairsMatchWithoutAFlippedStart) {
     const auto data = test::data_directory();
     if (!data) {
@@ -115,7 +137,7 @@ TEST(RealPairs, SmallPairsMatchWithoutAFlippedStart) {
         }
         const CorrespondenceError error = default_match_error(read_pair(*data, pair));
         EXPECT_LT(error.mean, 0.02) << name;
-        EXPECT_EQ(error.stranded_count, 0) << name;
+        expect_stranded_only_at_contacts(error, name);
         error_sum += error.mean;
         ++matched;
     }
@@ -139,12 +161,7 @@ TEST(RealPairs, FullBodyKeepsItsHeadOnStraight) {
     // are counted, up to 2.0 % of the diagonal from where they belong (three, up to 0.4 %,
     // before the spectral view was made scale-free: a chaotic change of the near-tie
     // decisions, with the same mean error to ±0.1 %).
-    EXPECT_TRUE(few_stranded(*error));
-    for (std::size_t i = 0; i < error->stranded.size(); ++i) {
-        if (error->stranded[i]) {
-            EXPECT_LT(error->distance[static_cast<Eigen::Index>(i)], 0.025) << "vertex " << i;
-        }
-    }
+    expect_stranded_only_at_contacts(*error, "tosca_michael_0_1");
     // Its hands landed palm for back (turned 164° and 171°, 1.13 % mean error, 5.7 % of the
     // area turned over) until a fine functional map turned them back (MatchOptions::
     // turn_back_parts): 0.43 %, 3.1 %.
