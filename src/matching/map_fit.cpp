@@ -75,11 +75,20 @@ Eigen::MatrixX3d fitted_to_map(const TriangleMesh& deformed, const Eigen::Matrix
     return deformed.V + solver.solve(weighted.asDiagonal() * (placement - deformed.V));
 }
 
+namespace {
+
+// Whether the signatures agree better after the fit by more than the share `progress`.
+bool agrees_better(const FitRating& current, const FitRating& fitted, double progress) {
+    return fitted.discrepancy < (1 - progress) * current.discrepancy;
+}
+
+}  // namespace
+
 bool keeps_fit(const FitRating& current, const FitRating& fitted, double progress) {
     if (fitted.turning < std::min(0.0, current.turning)) {
         return false;
     }
-    if (fitted.discrepancy < (1 - progress) * current.discrepancy) {
+    if (agrees_better(current, fitted, progress)) {
         return true;
     }
     return fitted.turning >= kMapFitRightTurning &&
@@ -91,10 +100,10 @@ std::optional<std::size_t> first_kept_fit(const FitRating& current,
                                           const std::vector<FitRating>& fitted, double progress) {
     for (std::size_t k = 0; k < fitted.size(); ++k) {
         const bool turns_worse = fitted[k].turning < current.turning - kMapFitTurningGain;
-        const bool clearly_better =
-            fitted[k].discrepancy < (1 - kMapFitProgress) * current.discrepancy;
-        if (keeps_fit(current, fitted[k], progress) &&
-            !(turns_worse && (k > 0 || !clearly_better))) {
+        // Only the first map's fit may turn them worse, and only with its signatures clearly
+        // better.
+        const bool excused = k == 0 && agrees_better(current, fitted[k], kMapFitProgress);
+        if (keeps_fit(current, fitted[k], progress) && (!turns_worse || excused)) {
             return k;
         }
     }

@@ -63,9 +63,10 @@ inline constexpr double kMapTear = 3;
                                              const Eigen::MatrixX3d& placement, double length,
                                              const Eigen::VectorXd& weights = {});
 
-/// The share by which a fit after the first must lower the signatures' discrepancy: more than
-/// it changes between the successive maps of a converged fit (−2.0 … +4.6 % on the 10 results
-/// measured, docs/eval/results.md).
+/// The share by which a fit after the first must lower the signatures' discrepancy, and the
+/// first map's fit to be kept while it turns the turning functions worse (first_kept_fit()):
+/// more than it changes between the successive maps of a converged fit (−2.0 … +4.6 % on the
+/// 10 results measured, docs/eval/results.md).
 inline constexpr double kMapFitProgress = 0.05;
 
 /// How well a match agrees with its target intrinsically, before or after a fit.
