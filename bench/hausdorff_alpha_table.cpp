@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Prints how the pseudo-Hausdorff distance d_H approaches the Hausdorff distance as α grows
-// (README table): two samplings of the same sphere, and a sphere against an ellipsoid, on
-// generated meshes. Columns: d_H for each α, the vertex-set limit √(H_V² + ε²) − ε, and the
+// (docs/benchmarks.md table): two samplings of the same sphere, and a sphere against an ellipsoid,
+// on generated meshes. Columns: d_H for each α, the vertex-set limit √(H_V² + ε²) − ε, and the
 // exact surface Hausdorff distance.
 #include <Eigen/Geometry>
 #include <cmath>

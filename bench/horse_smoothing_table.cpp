@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Prints the README's smoothing table: each method on $GENFLOW_DATA/smoothing/horse_noisy.ply,
-// RMS vertex distance to horse.ply (same connectivity) after every step, in units of the mean
-// edge length h, and the volume change. Usage: horse_smoothing_table [DT] [STEPS]
+// Prints the smoothing table of docs/benchmarks.md: each method on
+// $GENFLOW_DATA/smoothing/horse_noisy.ply, RMS vertex distance to horse.ply (same connectivity)
+// after every step, in units of the mean edge length h, and the volume change. Usage:
+// horse_smoothing_table [DT] [STEPS]
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>

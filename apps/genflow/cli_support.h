@@ -16,7 +16,7 @@
 
 namespace genflow::cli {
 
-/// Exit codes of the genflow tool (documented in the README).
+/// Exit codes of the genflow tool (documented in docs/cli.md).
 enum ExitCode : int {
     kSuccess = 0,
     kFailure = 1,   ///< the computation failed (solver, output not writable)

@@ -36,7 +36,7 @@ void register_info_command(CLI::App& app) {
         "bounding box and genus of a mesh");
     command->add_option("mesh", options->mesh, "Mesh file (.obj, .ply, .off, .stl)")->required();
     command->add_flag("--json", options->json,
-                      "Print one JSON object on stdout instead of text (schema in the README); "
+                      "Print one JSON object on stdout instead of text (schema in docs/cli.md); "
                       "warnings go into it instead of stderr");
     command->callback([options] { run_info(*options); });
 }

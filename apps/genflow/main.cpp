@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     register_distance_command(app);
     register_match_command(app);
     register_eval_command(app);
+    register_benchmark_command(app);
     register_demo_command(app);
     try {
         app.parse(argc, argv);

@@ -9,7 +9,7 @@
 
 namespace genflow::cli {
 
-/// The JSON object of `genflow info --json` (schema in the README).
+/// The JSON object of `genflow info --json` (schema in docs/cli.md).
 nlohmann::json mesh_summary_json(const LoadedMesh& loaded);
 
 /// The human-readable form of the same information, several lines.

@@ -8,22 +8,24 @@ namespace genflow::detail {
 
 std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from, const Eigen::MatrixXd& to) {
     // |a − b|² = |b|² − 2 a·b + |a|², the last the same for every b. Blocks of rows keep the
-    // distance matrix small on meshes of ten thousand vertices.
+    // distance matrix small on meshes of ten thousand vertices; it is allocated once (a fresh
+    // one per block cost as much in page faults as the products).
     constexpr Eigen::Index kBlock = 1024;
     const Eigen::RowVectorXd to_squared = to.rowwise().squaredNorm().transpose();
     std::vector<Eigen::Index> nearest(static_cast<std::size_t>(from.rows()));
+    Eigen::MatrixXd products(std::min(kBlock, from.rows()), to.rows());
     for (Eigen::Index begin = 0; begin < from.rows(); begin += kBlock) {
         const Eigen::Index rows = std::min(kBlock, from.rows() - begin);
-        const Eigen::MatrixXd distance =
-            (-2 * from.middleRows(begin, rows) * to.transpose()).rowwise() + to_squared;
+        auto distance = products.topRows(rows);
+        distance.noalias() = -2 * from.middleRows(begin, rows) * to.transpose();
         // The minima of all rows at once, column by column: the matrix is stored by columns,
         // and a walk along a row would touch a new cache line at every entry. The first
         // smallest entry wins, as minCoeff()'s does.
-        Eigen::VectorXd smallest = distance.col(0);
+        Eigen::VectorXd smallest = distance.col(0).array() + to_squared(0);
         std::vector<Eigen::Index> column(static_cast<std::size_t>(rows), 0);
         for (Eigen::Index j = 1; j < distance.cols(); ++j) {
             for (Eigen::Index i = 0; i < rows; ++i) {
-                const double d = distance(i, j);
+                const double d = distance(i, j) + to_squared(j);
                 if (d < smallest[i]) {
                     smallest[i] = d;
                     column[static_cast<std::size_t>(i)] = j;

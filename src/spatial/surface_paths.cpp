@@ -83,6 +83,49 @@ Eigen::VectorXd path_lengths_from(const ChordGraph& graph, Eigen::Index source) 
     return shortest_paths(graph, {source}, nullptr);
 }
 
+std::vector<double> path_lengths_to(const ChordGraph& graph, Eigen::Index source,
+                                    const std::vector<Eigen::Index>& targets) {
+    std::vector<double> distance(graph.size(), kUnreachable);
+    std::vector<bool> settled(graph.size(), false);
+    std::size_t open_targets = 0;
+    std::vector<bool> is_target(graph.size(), false);
+    for (const Eigen::Index t : targets) {
+        if (!is_target[static_cast<std::size_t>(t)]) {
+            is_target[static_cast<std::size_t>(t)] = true;
+            ++open_targets;
+        }
+    }
+    using Entry = std::pair<double, Eigen::Index>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+    distance[static_cast<std::size_t>(source)] = 0;
+    queue.emplace(0.0, source);
+    while (!queue.empty() && open_targets > 0) {
+        const auto [d, v] = queue.top();
+        queue.pop();
+        const auto u = static_cast<std::size_t>(v);
+        if (settled[u]) {
+            continue;
+        }
+        settled[u] = true;
+        if (is_target[u]) {
+            --open_targets;
+        }
+        for (const Chord& chord : graph[u]) {
+            auto& next = distance[static_cast<std::size_t>(chord.vertex)];
+            if (d + chord.length < next) {
+                next = d + chord.length;
+                queue.emplace(next, chord.vertex);
+            }
+        }
+    }
+    std::vector<double> lengths;
+    lengths.reserve(targets.size());
+    for (const Eigen::Index t : targets) {
+        lengths.push_back(distance[static_cast<std::size_t>(t)]);
+    }
+    return lengths;
+}
+
 std::vector<Eigen::Index> nearest_sources(const ChordGraph& graph,
                                           const std::vector<Eigen::Index>& sources) {
     std::vector<Eigen::Index> nearest;

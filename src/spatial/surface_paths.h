@@ -31,6 +31,12 @@ inline constexpr double kUnreachable = std::numeric_limits<double>::infinity();
 /// kUnreachable on other components.
 [[nodiscard]] Eigen::VectorXd path_lengths_from(const ChordGraph& graph, Eigen::Index source);
 
+/// The length of the shortest chord path from `source` to each of `targets`, in their order
+/// (Dijkstra, stopped once every target is settled: cheap when they are near the source);
+/// kUnreachable for targets on other components. Indices must be valid.
+[[nodiscard]] std::vector<double> path_lengths_to(const ChordGraph& graph, Eigen::Index source,
+                                                  const std::vector<Eigen::Index>& targets);
+
 /// Per vertex, the position in `sources` of the source nearest along the chord paths (one
 /// Dijkstra from all of them at once; ties go to the earlier source), or -1 on components
 /// without a source. Sources must be valid vertex indices.

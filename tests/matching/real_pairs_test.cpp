@@ -119,9 +119,8 @@ void expect_stranded_only_at_contacts(const CorrespondenceError& error, const st
 // level put the cat's points nearer their places: 1.8 % (MatchOptions::refinement_guidances).
 // A flipped start strands hundreds of vertices far from their places; small FAUST's near ties
 // have ended either at 0.85 % with none stranded or at 0.75 % with two, where a hand meets a
-// thigh, 2.3 and 2.5 % of the diagonal from their places (the latter on the AMD EPYC 9004 of
-// the forty-third session, the same with one to four threads, other BLAS kernels and libm
-// variants): contacts, not a flip.
+// thigh, 2.3 and 2.5 % of the diagonal from their places (the latter on an AMD EPYC 9004, the
+// same with one to four threads, other BLAS kernels and libm variants): contacts, not a flip.
 TEST(RealPairs, SmallPairsMatchWithoutAFlippedStart) {
     const auto data = test::data_directory();
     if (!data) {

@@ -9,7 +9,7 @@
 
 namespace genflow {
 
-/// The files that describe a template's parts (README, "Part files").
+/// The files that describe a template's parts (docs/matching.md, "Part files").
 struct PartFiles {
     /// The part tree, JSON, in one of three layouts:
     ///  - {"parts": [{"name", "parent": name or null, "joint_center": [x, y, z]}, ...]},

@@ -109,7 +109,7 @@ struct MatchOptions {
     /// (FAUST and centaur small): the coarsest level converges in 58–93 steps instead of 300,
     /// 40 % less time, errors within ±0.3 % (h1 3.0 → 3.1 %, 3.9 → 4.1 %; rigid 4.5 → 4.9 %,
     /// 6.4 → 5.9 %): faster, not better, so off by default. Again on whole h1 matches
-    /// (forty-second session; results.md, "Flows that stop sooner"): the 12 pairs 174 → 137 s
+    /// (results.md, "Flows that stop sooner"): the 12 pairs 174 → 137 s
     /// at 1.04 %, the TOSCA cat 7.4 s, but the held-out sets worse (0.81 → 0.86 %, 0.75 →
     /// 0.83 %), their near-tied choices going the other way.
     bool implicit = false;

@@ -13,8 +13,8 @@ namespace genflow {
 struct SmoothingOptions {
     /// Time step in units of h² (the area flows' time has units of length²). Fairing is
     /// unconditionally stable; 0.25–1 removes scanner-like noise of amplitude ~0.4h in a few
-    /// steps (see the README's horse table). Mean-curvature flow clamps it to its stability
-    /// limit.
+    /// steps (see the horse table in docs/benchmarks.md). Mean-curvature flow clamps it to its
+    /// stability limit.
     double time_step = 0.5;
     /// Number of steps.
     int steps = 5;

@@ -1,0 +1,492 @@
+// SPDX-License-Identifier: MIT
+// genflow benchmark DIR: the standard protocol of the public correspondence benchmarks
+// (FAUST_r, SCAPE_r, ...) on a directory of shapes with .vts reference points: match a seeded
+// sample of ordered pairs (or all), measure each reference point's geodesic error on the target
+// over √area (genflow/evaluation/geodesic_error.h), flag pairs matched mirror-wise, and report
+// the mean × 100 within and across subjects, the PCK curve and the time per pair.
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli_support.h"
+#include "commands.h"
+#include "genflow/evaluation/benchmark_pairs.h"
+#include "genflow/evaluation/geodesic_error.h"
+#include "genflow/evaluation/reference_symmetry.h"
+#include "genflow/exceptions.h"
+#include "genflow/io/atomic_file.h"
+#include "genflow/io/mesh_format.h"
+#include "genflow/io/read_reference_points.h"
+#include "genflow/matching/correspondence.h"
+#include "genflow/matching/spectral_map.h"
+#include "genflow/operators/area.h"
+#include "match_flags.h"
+
+namespace genflow::cli {
+
+namespace {
+
+struct BenchmarkOptions {
+    std::string directory;
+    std::size_t pairs = 100;
+    bool all = false;
+    std::uint64_t seed = 1;
+    int subject_size = 0;  // 0: one subject
+    std::string output_dir;
+    bool resume = false;
+    std::string shard;  // "i/N"; empty: every pair
+    bool json = false;
+    std::string method = "match";
+    MatchFlags flags;
+};
+
+// The PCK curve's thresholds, in units of √area: 0 to 0.25 by 0.005 (the range of the
+// published plots), the histogram of each pair kept at that resolution.
+constexpr double kPckStep = 0.005;
+constexpr int kPckBins = 50;
+
+struct Shape {
+    std::string name;  // the file's stem
+    TriangleMesh mesh;
+    std::vector<Eigen::Index> reference;  // the vertex of each reference point
+};
+
+// Every mesh file of `directory` with a .vts file of the same stem beside it, by name.
+std::vector<Shape> read_shapes(const std::filesystem::path& directory) {
+    std::error_code error;
+    if (!std::filesystem::is_directory(directory, error)) {
+        throw IoError(directory.string() + ": not a directory");
+    }
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
+        const std::filesystem::path& path = entry.path();
+        if (mesh_format_from_extension(path) &&
+            std::filesystem::exists(std::filesystem::path(path).replace_extension(".vts"))) {
+            files.push_back(path);
+        }
+    }
+    std::sort(files.begin(), files.end());
+    std::vector<Shape> shapes;
+    for (const std::filesystem::path& path : files) {
+        LoadedMesh loaded = load_mesh(path);
+        std::vector<Eigen::Index> reference = read_reference_points(
+            std::filesystem::path(path).replace_extension(".vts"), loaded.mesh.V.rows());
+        if (!shapes.empty() && reference.size() != shapes.front().reference.size()) {
+            throw IoError(std::filesystem::path(path).replace_extension(".vts").string() + ": " +
+                          std::to_string(reference.size()) + " reference points, " +
+                          shapes.front().name + " has " +
+                          std::to_string(shapes.front().reference.size()));
+        }
+        shapes.push_back({path.stem().string(), std::move(loaded.mesh), std::move(reference)});
+    }
+    if (shapes.size() < 2) {
+        throw IoError(directory.string() +
+                      ": fewer than two meshes with a .vts file of reference points beside them");
+    }
+    return shapes;
+}
+
+ReferenceSymmetry symmetry_of(const std::vector<Shape>& shapes) {
+    std::vector<Eigen::MatrixX3d> positions;
+    std::vector<double> units;
+    for (const Shape& shape : shapes) {
+        positions.emplace_back(shape.mesh.V(shape.reference, Eigen::all));
+        units.push_back(std::sqrt(surface_area(shape.mesh)));
+    }
+    return estimate_reference_symmetry(positions, units);
+}
+
+// "i/N" → the pairs at positions p with p mod N = i.
+std::vector<ShapePair> shard_of(std::vector<ShapePair> pairs, const std::string& shard) {
+    if (shard.empty()) {
+        return pairs;
+    }
+    const auto slash = shard.find('/');
+    std::size_t index = 0;
+    std::size_t count = 0;
+    const auto parse = [](std::string_view text, std::size_t& value) {
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        return error == std::errc() && end == text.data() + text.size() && !text.empty();
+    };
+    if (slash == std::string::npos || !parse(std::string_view(shard).substr(0, slash), index) ||
+        !parse(std::string_view(shard).substr(slash + 1), count) || count == 0 || index >= count) {
+        throw InvalidInput("--shard: expected i/N with 0 <= i < N, got '" + shard + "'");
+    }
+    std::vector<ShapePair> share;
+    for (std::size_t p = index; p < pairs.size(); p += count) {
+        share.push_back(pairs[p]);
+    }
+    return share;
+}
+
+double mean_of(const Eigen::VectorXd& values) {
+    return values.mean();
+}
+
+std::vector<int> histogram_of(const Eigen::VectorXd& errors) {
+    std::vector<int> bins(kPckBins + 1, 0);  // the last: above the curve's range
+    for (const double e : errors) {
+        ++bins[static_cast<std::size_t>(std::min<double>(kPckBins, std::floor(e / kPckStep)))];
+    }
+    return bins;
+}
+
+// Each of `vertices` as a point of `mesh`: a face of its and barycentric coordinates there.
+std::vector<SurfacePoint> vertex_points(const TriangleMesh& mesh,
+                                        const std::vector<Eigen::Index>& vertices) {
+    std::vector<std::pair<Eigen::Index, int>> corner(static_cast<std::size_t>(mesh.V.rows()),
+                                                     {-1, 0});
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        for (int c = 0; c < 3; ++c) {
+            corner[static_cast<std::size_t>(mesh.F(f, c))] = {f, c};
+        }
+    }
+    std::vector<SurfacePoint> points(vertices.size());
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        const auto [face, c] = corner[static_cast<std::size_t>(vertices[i])];
+        points[i].face = face;
+        points[i].barycentric = Eigen::Vector3d::Unit(c);
+        points[i].point = mesh.V.row(vertices[i]).transpose();
+    }
+    return points;
+}
+
+struct PairMap {
+    std::vector<SurfacePoint> points;  // per template vertex
+    double seconds = 0;
+    nlohmann::json details = nlohmann::json::object();  // what the method reports of itself
+};
+
+// The map of `method`: the deformed template's closest points ("match"), or the intrinsic
+// vertex map alone ("spectral-map", spectral_map()).
+PairMap map_of(const std::string& method, const Shape& from, const Shape& to,
+               const MatchOptions& options) {
+    if (method == "spectral-map") {
+        const auto start = std::chrono::steady_clock::now();
+        const SpectralMap map = spectral_map(from.mesh, to.mesh);
+        return {vertex_points(to.mesh, map.target_vertex),
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                {{"orientation_ratio", map.orientation_ratio}, {"basis_size", map.basis_size}}};
+    }
+    const MatchResult result = match(from.mesh, to.mesh, options);
+    return {closest_points(result.deformed.V, to.mesh), result.seconds};
+}
+
+// Maps one pair and measures it; writes the map of every template vertex to `map_file`
+// (write_correspondences()) unless it is empty.
+nlohmann::json run_pair(const Shape& from, const Shape& to, bool within,
+                        const ReferenceSymmetry& symmetry, const std::string& method,
+                        const MatchOptions& options, const std::filesystem::path& map_file) {
+    const PairMap result = map_of(method, from, to, options);
+    const std::vector<SurfacePoint>& map = result.points;
+    if (!map_file.empty()) {
+        write_correspondences(map_file, map);
+    }
+    std::vector<SurfacePoint> mapped;
+    for (const Eigen::Index v : from.reference) {
+        mapped.push_back(map[static_cast<std::size_t>(v)]);
+    }
+    const GeodesicErrorMeasure measure(to.mesh);
+    const GeodesicErrors errors = measure.errors(mapped, to.reference);
+    nlohmann::json row = {{"from", from.name},
+                          {"to", to.name},
+                          {"within_subject", within},
+                          {"mean", mean_of(errors.to_vertex)},
+                          {"mean_point_map", mean_of(errors.to_point)},
+                          {"histogram", histogram_of(errors.to_vertex)},
+                          {"seconds", result.seconds},
+                          {"details", result.details}};
+    if (symmetry.found()) {
+        std::vector<Eigen::Index> mirrored(to.reference.size());
+        for (std::size_t k = 0; k < mirrored.size(); ++k) {
+            mirrored[k] = to.reference[static_cast<std::size_t>(symmetry.mirror[k])];
+        }
+        const double mirror_mean = mean_of(measure.errors(mapped, mirrored).to_vertex);
+        row["mean_against_mirror"] = mirror_mean;
+        row["mirrored"] = mirror_mean < row["mean"].get<double>();
+    }
+    return row;
+}
+
+// The file of a pair's result in --output-dir, and (`extension` ".map.txt") of its map.
+std::filesystem::path pair_file(const std::filesystem::path& output_dir, const Shape& from,
+                                const Shape& to, const char* extension = ".json") {
+    return output_dir / "pairs" / (from.name + "-" + to.name + extension);
+}
+
+// A pair's result from an earlier run (--resume), if its file is complete.
+std::optional<nlohmann::json> earlier_result(const std::filesystem::path& file) {
+    std::ifstream stream(file);
+    if (!stream) {
+        return std::nullopt;
+    }
+    const nlohmann::json row = nlohmann::json::parse(stream, nullptr, false);
+    if (row.is_discarded() || !row.contains("mean") || !row.contains("histogram")) {
+        return std::nullopt;
+    }
+    return row;
+}
+
+// The figures of a set of pairs' rows.
+nlohmann::json summary_of(const std::vector<nlohmann::json>& rows) {
+    double sum = 0;
+    double sum_point = 0;
+    double seconds = 0;
+    double slowest = 0;
+    int mirrored = 0;
+    std::vector<double> means;
+    std::vector<long> bins(kPckBins + 1, 0);
+    for (const nlohmann::json& row : rows) {
+        means.push_back(row["mean"].get<double>());
+        sum += means.back();
+        sum_point += row["mean_point_map"].get<double>();
+        seconds += row["seconds"].get<double>();
+        slowest = std::max(slowest, row["seconds"].get<double>());
+        mirrored += row.value("mirrored", false) ? 1 : 0;
+        for (std::size_t b = 0; b < bins.size(); ++b) {
+            bins[b] += row["histogram"][b].get<long>();
+        }
+    }
+    const auto n = static_cast<double>(rows.size());
+    std::sort(means.begin(), means.end());
+    std::vector<double> pck;
+    long below = 0;
+    long total = 0;
+    for (const long count : bins) {
+        total += count;
+    }
+    for (int b = 0; b < kPckBins; ++b) {
+        below += bins[static_cast<std::size_t>(b)];
+        pck.push_back(total > 0 ? static_cast<double>(below) / static_cast<double>(total) : 0);
+    }
+    return {{"pairs", rows.size()},
+            {"mean", rows.empty() ? 0 : sum / n},
+            {"mean_point_map", rows.empty() ? 0 : sum_point / n},
+            {"median_pair", rows.empty() ? 0 : means[means.size() / 2]},
+            {"worst_pair", rows.empty() ? 0 : means.back()},
+            {"mirrored", mirrored},
+            {"pck", pck},
+            {"seconds_mean", rows.empty() ? 0 : seconds / n},
+            {"seconds_max", slowest}};
+}
+
+void print_summary_row(const char* set, const nlohmann::json& s) {
+    if (s["pairs"].get<std::size_t>() == 0) {
+        return;
+    }
+    const auto& pck = s["pck"];
+    // PCK at 0.025, 0.05 and 0.1 of √area: the curve's value at the end of bins 4, 9 and 19.
+    std::printf(
+        "| %s | %zu | %.2f | %.2f | %.2f | %.2f | %d | %.1f / %.1f / %.1f %% | %.1f s (%.1f s) "
+        "|\n",
+        set, s["pairs"].get<std::size_t>(), 100 * s["mean"].get<double>(),
+        100 * s["mean_point_map"].get<double>(), 100 * s["median_pair"].get<double>(),
+        100 * s["worst_pair"].get<double>(), s["mirrored"].get<int>(), 100 * pck[4].get<double>(),
+        100 * pck[9].get<double>(), 100 * pck[19].get<double>(), s["seconds_mean"].get<double>(),
+        s["seconds_max"].get<double>());
+}
+
+// The sample of ordered pairs the options ask for (and this shard's share of it).
+std::vector<ShapePair> sample_of(const BenchmarkOptions& options, std::size_t shapes) {
+    std::vector<int> subjects(shapes, 0);
+    for (std::size_t s = 0; s < shapes && options.subject_size > 0; ++s) {
+        subjects[s] = static_cast<int>(s) / options.subject_size;
+    }
+    return shard_of(
+        benchmark_pairs(subjects, options.all ? std::nullopt : std::optional(options.pairs),
+                        options.seed),
+        options.shard);
+}
+
+// One pair's row: read back from --output-dir with --resume, else mapped, measured and kept
+// there. A solver failure is a row too ("failed"), and the benchmark goes on.
+nlohmann::json row_of(const BenchmarkOptions& options, const Shape& from, const Shape& to,
+                      bool within, const ReferenceSymmetry& symmetry,
+                      const MatchOptions& match_options) {
+    const std::filesystem::path output_dir(options.output_dir);
+    if (options.resume) {
+        if (std::optional<nlohmann::json> row = earlier_result(pair_file(output_dir, from, to))) {
+            return *row;
+        }
+    }
+    nlohmann::json row;
+    try {
+        row = run_pair(from, to, within, symmetry, options.method, match_options,
+                       output_dir.empty() ? std::filesystem::path()
+                                          : pair_file(output_dir, from, to, ".map.txt"));
+    } catch (const SolverError& e) {
+        row = {
+            {"from", from.name}, {"to", to.name}, {"within_subject", within}, {"failed", e.what()}};
+    }
+    if (!output_dir.empty() && !row.contains("failed")) {
+        write_file_atomically(pair_file(output_dir, from, to), row.dump() + "\n");
+    }
+    return row;
+}
+
+void print_row(const nlohmann::json& row) {
+    const std::string pair = row["from"].get<std::string>() + " → " + row["to"].get<std::string>();
+    const char* kind = row["within_subject"].get<bool>() ? "within" : "across";
+    if (row.contains("failed")) {
+        std::printf("| %s | %s | failed: %s | | | |\n", pair.c_str(), kind,
+                    row["failed"].get<std::string>().c_str());
+    } else {
+        std::printf("| %s | %s | %.2f | %.2f | %s | %.1f s |\n", pair.c_str(), kind,
+                    100 * row["mean"].get<double>(), 100 * row["mean_point_map"].get<double>(),
+                    row.contains("mirrored") ? (row["mirrored"].get<bool>() ? "yes" : "no") : "?",
+                    row["seconds"].get<double>());
+    }
+    std::fflush(stdout);
+}
+
+nlohmann::json summary_json(const BenchmarkOptions& options, std::size_t shapes,
+                            const ReferenceSymmetry& symmetry,
+                            const std::vector<nlohmann::json>& rows) {
+    std::vector<nlohmann::json> all;
+    std::vector<nlohmann::json> within;
+    std::vector<nlohmann::json> across;
+    int failed = 0;
+    for (const nlohmann::json& row : rows) {
+        if (row.contains("failed")) {
+            ++failed;
+            continue;
+        }
+        all.push_back(row);
+        (row["within_subject"].get<bool>() ? within : across).push_back(row);
+    }
+    return {{"directory", options.directory},
+            {"shapes", shapes},
+            {"seed", options.seed},
+            {"subject_size", options.subject_size},
+            {"shard", options.shard},
+            {"method", options.method},
+            {"geodesics", "shortest paths along the edges (Dijkstra)"},
+            {"unit", "sqrt(area) of the target"},
+            {"pck_step", kPckStep},
+            {"symmetry_residual", symmetry.residual},
+            {"symmetry_found", symmetry.found()},
+            {"failed", failed},
+            {"all", summary_of(all)},
+            {"within_subjects", summary_of(within)},
+            {"across_subjects", summary_of(across)},
+            {"rows", rows}};
+}
+
+void print_summary(const nlohmann::json& summary) {
+    std::printf(
+        "\n| pairs | count | error ×100 | point map ×100 | median pair | worst pair | mirrored | "
+        "PCK at 2.5 / 5 / 10 %% of √area | time mean (max) |\n"
+        "|---|---:|---:|---:|---:|---:|---:|---|---|\n");
+    print_summary_row("all", summary["all"]);
+    print_summary_row("within subjects", summary["within_subjects"]);
+    print_summary_row("across subjects", summary["across_subjects"]);
+    if (summary["failed"].get<int>() > 0) {
+        std::printf("\n%d pair(s) failed (not in the figures).\n", summary["failed"].get<int>());
+    }
+    std::printf(
+        "\nError: the mean over all reference points of the geodesic distance on the target "
+        "(shortest paths along its edges) from where the map put each one to where it belongs, "
+        "over √area of the target, × 100, the map's points snapped to their faces' nearest "
+        "corners as a vertex-to-vertex map would be (the published tables' protocol); point "
+        "map: the points as they are. Mirrored: pairs whose error is smaller against the "
+        "mirrored reference points (symmetry residual %.4f √area%s).\n",
+        summary["symmetry_residual"].get<double>(),
+        summary["symmetry_found"].get<bool>() ? "" : ": no symmetry, not measured");
+}
+
+// The stages: the set, the sample, each pair's row, the summary. Exits 1 if a pair failed.
+void run_benchmark(const BenchmarkOptions& options) {
+    if (options.resume && options.output_dir.empty()) {
+        throw InvalidInput("--resume needs --output-dir (where the earlier results are)");
+    }
+    const std::vector<Shape> shapes = read_shapes(options.directory);
+    const std::vector<ShapePair> pairs = sample_of(options, shapes.size());
+    const ReferenceSymmetry symmetry = symmetry_of(shapes);
+    const MatchOptions match_options = resolved(options.flags, false);
+    if (!options.output_dir.empty()) {
+        create_output_directory(std::filesystem::path(options.output_dir) / "pairs");
+    }
+    if (!options.json) {
+        std::printf(
+            "| pair | subjects | error ×100 | point map ×100 | mirrored | time |\n"
+            "|---|---|---:|---:|---|---:|\n");
+    }
+    std::vector<nlohmann::json> rows;
+    for (const ShapePair& pair : pairs) {
+        rows.push_back(row_of(options, shapes[static_cast<std::size_t>(pair.from)],
+                              shapes[static_cast<std::size_t>(pair.to)], pair.within_subject,
+                              symmetry, match_options));
+        if (!options.json) {
+            print_row(rows.back());
+        }
+    }
+    const nlohmann::json summary = summary_json(options, shapes.size(), symmetry, rows);
+    if (!options.output_dir.empty()) {
+        write_file_atomically(std::filesystem::path(options.output_dir) / "summary.json",
+                              summary.dump(2) + "\n");
+    }
+    if (options.json) {
+        std::cout << summary.dump(2) << '\n';
+    } else {
+        print_summary(summary);
+    }
+    if (summary["failed"].get<int>() > 0) {
+        throw SolverError("benchmark: " + std::to_string(summary["failed"].get<int>()) +
+                          " pair(s) failed; the figures leave them out");
+    }
+}
+
+}  // namespace
+
+void register_benchmark_command(CLI::App& app) {
+    auto options = std::make_shared<BenchmarkOptions>();
+    auto* command = app.add_subcommand(
+        "benchmark",
+        "Run the matcher on a correspondence benchmark (a directory of meshes, each with a .vts "
+        "file of 1-based reference vertices, as FAUST_r publishes them) with the standard "
+        "protocol: the geodesic error of every reference point over √area of the target, × 100, "
+        "within and across subjects, the PCK curve, mirrored pairs and the time per pair");
+    command->add_option("directory", options->directory, "The benchmark's shapes")->required();
+    command->add_option("--pairs", options->pairs, "Ordered pairs to draw (half within subjects)")
+        ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+        ->capture_default_str();
+    command->add_flag("--all", options->all, "Every ordered pair instead of a sample");
+    command->add_option("--seed", options->seed, "Seed of the sample")->capture_default_str();
+    command
+        ->add_option("--subject-size", options->subject_size,
+                     "Shapes in name order form subjects of this many (FAUST: 10); 0: one subject")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    command->add_option("--output-dir", options->output_dir,
+                        "Write each pair's result (pairs/FROM-TO.json), its map (pairs/"
+                        "FROM-TO.map.txt, as match --correspondence writes it) and summary.json "
+                        "there");
+    command->add_flag("--resume", options->resume,
+                      "Take the pairs already in --output-dir from there instead of matching "
+                      "them again");
+    command->add_option("--shard", options->shard,
+                        "Only the pairs at positions i, i + N, ... of the sample (i/N), so that N "
+                        "processes share it; a last run with --resume summarizes them all");
+    command->add_flag("--json", options->json, "Print the summary as JSON instead of tables");
+    command
+        ->add_option("--method", options->method,
+                     "match: the matcher (its options below); spectral-map: the intrinsic vertex "
+                     "map alone (orientation-aware functional map and ZoomOut), the matcher's "
+                     "first stage")
+        ->check(CLI::IsMember({"match", "spectral-map"}))
+        ->capture_default_str();
+    add_match_flags(*command, options->flags);
+    command->callback([options] { run_benchmark(*options); });
+}
+
+}  // namespace genflow::cli

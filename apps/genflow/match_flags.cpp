@@ -1,0 +1,169 @@
+// SPDX-License-Identifier: MIT
+#include "match_flags.h"
+
+#include "cli_support.h"
+
+namespace genflow::cli {
+
+void add_match_flags(CLI::App& command, MatchFlags& flags) {
+    command
+        .add_option("--prior", flags.prior,
+                    "Deformation prior (the metric of the flow): l2 (baseline), h1 (smooth), "
+                    "rigid (quasi-rigid: rigid motion and scaling preferred), articulated "
+                    "(parts turn about their joints; needs --parts), isometric (bends "
+                    "freely, resists local stretching). Default: articulated with --parts, "
+                    "else h1")
+        ->check(CLI::IsMember(match_prior_names()));
+    command
+        .add_option("--levels", flags.match.levels,
+                    "Resolution levels (0: automatic, coarsest about 1000 vertices)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    command
+        .add_option("--iterations", flags.match.max_iterations,
+                    "Maximum flow steps on the coarsest level")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    command
+        .add_option("--fine-iterations", flags.match.fine_iterations,
+                    "Maximum flow steps on each finer level")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    command
+        .add_option(
+            "--stagnation-tolerance", flags.match.stagnation_tolerance,
+            "A flow stops when its energy fell by less than this fraction over 20 steps "
+            "(3e-3: 15-30 % faster at about the same mean error, but near-tied choices between "
+            "starts then go either way)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    command.add_option("--alpha", flags.match.alpha, "Exponent of the pseudo-Hausdorff distance")
+        ->check(CLI::Range(0.5, 1000.0))
+        ->capture_default_str();
+    command
+        .add_option("--coarse-epsilon", flags.match.coarse_epsilon,
+                    "Flow the first half of the coarsest level with an ε this many times "
+                    "larger (a smoother distance; 1 = off)")
+        ->check(CLI::Range(1.0, 100.0))
+        ->capture_default_str();
+    command
+        .add_option("--rigidity-length", flags.match.isometric.rigidity_length,
+                    "Isometric prior: patches smaller than this fraction of the diagonal keep "
+                    "their edge lengths")
+        ->check(CLI::Range(0.0, 10.0))
+        ->capture_default_str();
+    command
+        .add_option("--fake-edges", flags.match.isometric.fake_edges,
+                    "Isometric prior: edges added across the limbs for rigidity")
+        ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    command
+        .add_option("--candidates", flags.match.alignment_candidates,
+                    "Rigid starts flowed on the coarsest level; of those within 5 % of the "
+                    "lowest d_H, the one whose heat kernel signatures agree best goes on")
+        ->check(CLI::Range(1, 24))
+        ->capture_default_str();
+    command
+        .add_option("--contenders", flags.match.contenders,
+                    "Of those, the ones that agree within 25 % of the best go through the "
+                    "guided flows each (at most this many); the one that ends agreeing best "
+                    "is kept")
+        ->check(CLI::Range(1, 24))
+        ->capture_default_str();
+    command
+        .add_option("--signature-guidance", flags.match.signature_guidance,
+                    "Weight of the heat kernel signatures in the coarsest flow, as a fraction "
+                    "of the diagonal (points are near only if close and alike; 0 = off)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+    command
+        .add_option("--eigenfunction-guidance", flags.match.eigenfunction_guidance,
+                    "Weight of the Laplacian eigenfunctions, carried over by a functional map, "
+                    "in a second guided coarsest flow that tells left from right (0 = off)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+    command
+        .add_option("--guidance-candidates", flags.match.guidance_candidates,
+                    "Run that second guided flow at the eigenfunction guidance times 1, 2, 4, "
+                    "... and keep the result that agrees best with the target intrinsically")
+        ->check(CLI::Range(1, 8))
+        ->capture_default_str();
+    command
+        .add_option("--stretch-weight", flags.match.stretch_weight,
+                    "Weight of the template's edge stretching (relative to its rest lengths, "
+                    "times the diagonal) added to d_H in the last guided coarsest flow; it "
+                    "keeps the template from sliding along the target (0 = off)")
+        ->check(CLI::Range(0.0, 100.0))
+        ->capture_default_str();
+    command
+        .add_option("--stiffness-candidates", flags.match.stiffness_candidates,
+                    "Run that last flow at the stretch weight times 1, 4, 16, ... and keep the "
+                    "result that agrees best with the target intrinsically (1 = the weight only)")
+        ->check(CLI::Range(1, 8))
+        ->capture_default_str();
+    command
+        .add_option("--refinement-guidances", flags.match.refinement_guidances,
+                    "Refine the second coarsest level with flows guided by the eigenfunctions "
+                    "at the eigenfunction guidance times 1, 1/2, ... (this many) and keep, of "
+                    "those and the plain flow, the result that agrees best (0 = off)")
+        ->check(CLI::Range(0, 8))
+        ->capture_default_str();
+    command
+        .add_option("--refinement-iterations", flags.match.refinement_iterations,
+                    "Steps of each guided refining flow")
+        ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    add_second_opinion_option(command, flags.match.second_opinion_above);
+    command
+        .add_option("--alternative-starts", flags.match.alternative_starts,
+                    "A result still doubtful after the second opinion, or one the second "
+                    "opinion gave, is matched again from the intrinsic starts of up to this "
+                    "many further landmark sets, side by side; the one that disagrees least is "
+                    "kept (0: none)")
+        ->check(CLI::Range(0, 7))
+        ->capture_default_str();
+    command
+        .add_option("--alternative-starts-above", flags.match.alternative_starts_above,
+                    "Only a second opinion's result that disagrees more than this with the "
+                    "target is matched again from the alternative starts (a doubtful one always "
+                    "is; 0: every one; inf: none)")
+        ->check(non_negative_or_infinity())
+        ->capture_default_str();
+    command.add_flag("--no-limb-swaps", flags.no_limb_swaps,
+                     "Do not check whether the match put two limbs on each other's places (a "
+                     "left leg on the right one) by which way the extremities lie, nor match "
+                     "again with them exchanged");
+    command.add_flag("--no-signature-fallback", flags.no_signature_fallback,
+                     "Do not run a doubtful last coarsest round again guided by the heat kernel "
+                     "signatures alone, whose result is kept if it disagrees less");
+    command.add_flag("--no-turn-back", flags.no_turn_back,
+                     "Do not turn back the parts that a fine functional map (60 eigenfunctions) "
+                     "places turned over in their own place (a hand palm for back) after the "
+                     "refinement");
+    command
+        .add_option("--map-fits", flags.match.map_fits,
+                    "At most this many fits of the refined match to where that map puts it, "
+                    "each kept only if the heat kernel signatures then agree better with the "
+                    "target, or the turning functions of pairs of extremities clearly better, "
+                    "and not if the map was mirrored (0: none)")
+        ->check(CLI::Range(0, 100))
+        ->capture_default_str();
+    command.add_flag("--implicit", flags.match.implicit,
+                     "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
+    command.add_flag("--no-align", flags.no_align,
+                     "Skip the global rigid alignment (the inputs are already aligned)");
+}
+
+MatchOptions resolved(const MatchFlags& flags, bool has_parts) {
+    MatchOptions options = flags.match;
+    const std::string prior =
+        !flags.prior.empty() ? flags.prior : (has_parts ? "articulated" : "h1");
+    options.prior = *parse_match_prior(prior);
+    options.align = !flags.no_align;
+    options.turn_back_parts = !flags.no_turn_back;
+    options.swap_limbs = !flags.no_limb_swaps;
+    options.signature_fallback = !flags.no_signature_fallback;
+    return options;
+}
+
+}  // namespace genflow::cli
