@@ -4,8 +4,8 @@
 // factorization + solve) and later steps separately, through the library (whichever backend it
 // was built with) and with CHOLMOD and Eigen's SimplicialLDLT side by side; one H1 step at the
 // size of a match's coarsest level. Also the rebuild of
-// the quasi-articulated metric (SPEC.md §6) at every flow step, on a generated 41K-vertex sphere
-// cut into a chain of 17 parts.
+// the quasi-articulated metric (docs/formulas.md §6) at every flow step, on a generated 41K-vertex
+// sphere cut into a chain of 17 parts.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/SparseCholesky>

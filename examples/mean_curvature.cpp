@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Mean curvature from the discrete operators: ΔX = −M⁻¹KX = −2Hn (SPEC.md §1).
+// Mean curvature from the discrete operators: ΔX = −M⁻¹KX = −2Hn (docs/formulas.md §1).
 // Usage: mean_curvature_example [MESH]   (default: a generated sphere of radius 2, H = 0.5)
 #include <iostream>
 

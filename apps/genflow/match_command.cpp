@@ -43,17 +43,19 @@ void require_writable_format(const std::string& path) {
     }
 }
 
+// The priors deform the template as a surface, so match() matches meshes as they come as
+// repair_surface() makes them: say what it did.
+void print_repairs(const std::string& path, const std::string& repairs) {
+    if (!repairs.empty()) {
+        std::cerr << "warning: " << path << ": matched as repaired (" << repairs
+                  << "); the output keeps every vertex\n";
+    }
+}
+
 void run_match(const MatchCommandOptions& options) {
     require_writable_format(options.output);
     const LoadedMesh template_mesh = load_mesh(options.template_path);
     const LoadedMesh target = load_mesh(options.target_path);
-    // The priors deform the template as a surface: it must be one.
-    if (!template_mesh.report.manifold()) {
-        throw IoError(options.template_path + ": the template is not manifold (" +
-                      std::to_string(template_mesh.report.non_manifold_edges) + " edges, " +
-                      std::to_string(template_mesh.report.non_manifold_vertices) +
-                      " vertices); repair it first");
-    }
     if (!options.json) {
         print_warnings(template_mesh);
         print_warnings(target);
@@ -100,6 +102,10 @@ void run_match(const MatchCommandOptions& options) {
     }
     job.progress_bar = !options.json && !options.quiet;
     const nlohmann::json summary = run_match_job(std::move(job));
+    if (!options.json) {
+        print_repairs(options.template_path, summary["template_repairs"].get<std::string>());
+        print_repairs(options.target_path, summary["target_repairs"].get<std::string>());
+    }
     if (summary["doubtful"].get<bool>()) {
         std::cerr << "warning: " << options.target_path
                   << ": the match disagrees with the target's intrinsic shape (" << std::fixed

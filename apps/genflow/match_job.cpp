@@ -75,6 +75,8 @@ nlohmann::json run_match_job(MatchJob job) {
         {"alternative_starts", result.alternative_starts},
         {"alternative_start", result.alternative_start},
         {"swapped_limbs", result.swapped_limbs},
+        {"template_repairs", result.template_repairs},
+        {"target_repairs", result.target_repairs},
         {"hausdorff", distances.hausdorff},
         {"mean_distance", distances.mean},
         {"target_bbox_diagonal", diagonal},

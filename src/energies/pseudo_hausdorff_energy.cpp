@@ -292,7 +292,7 @@ double shell_radius2(const Side& to, const Eigen::Vector3d& x, double D, const P
 }
 
 // The truncation radius (as a squared distance) of the query at x, with the points within it
-// in `found`. Adaptive radius (SPEC.md §8): for any point m at d_m = |x − y_m|² + ε²,
+// in `found`. Adaptive radius (docs/formulas.md §8): for any point m at d_m = |x − y_m|² + ε²,
 // weight_m d_m^{−α} ≤ f_u, so everything beyond d = κ_m² d_m adds at most
 // W (κ_m² d_m)^{−α} = τ weight_m d_m^{−α} ≤ τ f_u, with κ_m² = (W/(weight_m τ))^{1/α}. D, the
 // smallest κ_m² d_m over a first small block (`smallest_scaled(rings)`: over the block of that

@@ -17,11 +17,13 @@
 #include "genflow/exceptions.h"
 #include "genflow/flows/gradient_descent.h"
 #include "genflow/matching/multiresolution.h"
+#include "genflow/mesh/repair.h"
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/smoothing/smoothing.h"
+#include "matching/carried_back.h"
 #include "matching/fine_spectrum.h"
 #include "matching/intrinsic_start.h"
 #include "matching/map_fit.h"
@@ -329,9 +331,11 @@ bool MatchResult::doubtful() const {
     return intrinsic_disagreement && *intrinsic_disagreement > kDoubtfulDisagreement;
 }
 
-MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
-                  const MatchOptions& options) {
-    check_inputs(template_mesh, target, options);
+namespace {
+
+// match() on surfaces that repair_surface() leaves as they are.
+MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh& target,
+                           const MatchOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     const double diagonal = bounding_box_diagonal(target);
     MatchResult result;
@@ -1119,6 +1123,29 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     result.deformed = TriangleMesh{current.V, template_mesh.F};
     result.hausdorff_energy = result.levels.back().energy_end;
     result.seconds = seconds_since(start);
+    return result;
+}
+
+}  // namespace
+
+MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
+                  const MatchOptions& options) {
+    check_inputs(template_mesh, target, options);
+    const RepairedSurface repaired_template = repair_surface(template_mesh);
+    const RepairedSurface repaired_target = repair_surface(target);
+    if (!repaired_template.changed() && !repaired_target.changed()) {
+        return match_surfaces(template_mesh, target, options);
+    }
+    MatchOptions on_repaired = options;
+    if (options.parts) {
+        on_repaired.parts = restrict_to(*options.parts, repaired_template.source_vertex);
+    }
+    MatchResult result = match_surfaces(repaired_template.mesh, repaired_target.mesh, on_repaired);
+    result.deformed =
+        TriangleMesh{detail::carried_back(repaired_template, template_mesh.V, result.deformed.V),
+                     template_mesh.F};
+    result.template_repairs = repaired_template.summary();
+    result.target_repairs = repaired_target.summary();
     return result;
 }
 

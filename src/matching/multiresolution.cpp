@@ -339,7 +339,7 @@ TriangleMesh transfer(const TriangleMesh& fine_rest, const TriangleMesh& coarse_
             throw InvalidInput("transfer: the embedding names a face the coarse mesh lacks");
         }
     }
-    // One-ring rotation fits R_b, with the normal term h² n'_b n_bᵀ (SPEC.md §9).
+    // One-ring rotation fits R_b, with the normal term h² n'_b n_bᵀ (docs/formulas.md §9).
     TriangleMesh deformed_coarse{coarse_deformed, coarse_rest.F};
     const Eigen::MatrixX3d n_rest = vertex_normals(coarse_rest);
     const Eigen::MatrixX3d n_deformed = vertex_normals(deformed_coarse);

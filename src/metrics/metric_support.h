@@ -42,7 +42,7 @@ void pin_fixed(Eigen::SparseMatrix<double>& S, const std::vector<bool>& fixed);
 void copy_fixed_rows(VertexField& result, const VertexField& input, const std::vector<bool>& fixed);
 
 /// A #V×3 field as the 3n vector of the metrics that couple coordinates (vertex i in entries
-/// 3i, 3i+1, 3i+2: SPEC.md §6 and §7), and back.
+/// 3i, 3i+1, 3i+2: docs/formulas.md §6 and §7), and back.
 [[nodiscard]] Eigen::VectorXd interleave(const VertexField& field);
 [[nodiscard]] VertexField deinterleave(const Eigen::VectorXd& vector);
 

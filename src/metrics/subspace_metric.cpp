@@ -110,9 +110,9 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
         gram = (gram + gram.transpose()) / 2;
     }
 
-    // Block Gram–Schmidt in the B inner product (SPEC.md §6): each block minus its components
-    // along the earlier ones (twice, for round-off), then an eigen-decomposition of its Gram
-    // matrix drops the directions already spanned (eigenvalues below 1e-8 of the block's own
+    // Block Gram–Schmidt in the B inner product (docs/formulas.md §6): each block minus its
+    // components along the earlier ones (twice, for round-off), then an eigen-decomposition of its
+    // Gram matrix drops the directions already spanned (eigenvalues below 1e-8 of the block's own
     // largest before projection) and orthonormalizes the rest. It runs on the coefficients
     // Q_k = F T_k, where every inner product is one of C: (B Q_k)ᵀ F S = T_kᵀ C S. Projecting
     // the 3n-row fields instead cost four products of O(n·m²): the articulated FAUST (76

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Matrix-free Krylov solvers for the operators that are never formed (the volume-controlled
-// metric's B and its implicit system, SPEC.md §4).
+// metric's B and its implicit system, docs/formulas.md §4).
 #pragma once
 
 #include <Eigen/Core>

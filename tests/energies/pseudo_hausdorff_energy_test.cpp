@@ -161,8 +161,8 @@ TEST(PseudoHausdorff, OfIdenticalMeshesIsWithinTheEpsilonOffset) {
 }
 
 TEST(PseudoHausdorff, ApproachesTheVertexHausdorffDistanceAsAlphaGrows) {
-    // Two different shapes, and two samplings of the same shape (SPEC.md §8: the limit is the
-    // ε-regularized Hausdorff distance between the vertex sets, not between the surfaces).
+    // Two different shapes, and two samplings of the same shape (docs/formulas.md §8: the limit is
+    // the ε-regularized Hausdorff distance between the vertex sets, not between the surfaces).
     const TriangleMesh sphere = make_icosphere(3);
     TriangleMesh resampled = make_icosphere(2);
     resampled.V = resampled.V *
@@ -173,7 +173,8 @@ TEST(PseudoHausdorff, ApproachesTheVertexHausdorffDistanceAsAlphaGrows) {
     for (const TriangleMesh* target : {&resampled, &ellipsoid}) {
         const double hausdorff = vertex_hausdorff(sphere.V, target->V);
         const double limit = std::sqrt(hausdorff * hausdorff + epsilon * epsilon) - epsilon;
-        // Not monotone in α (SPEC.md §8's table), but the soft-min bias of small α disappears.
+        // Not monotone in α (docs/formulas.md §8's table), but the soft-min bias of small α
+        // disappears.
         const auto error = [&](double alpha) {
             const PseudoHausdorffEnergy energy(*target, {.alpha = alpha, .epsilon = epsilon});
             return std::abs(energy.value(sphere) - limit) / limit;
@@ -289,7 +290,8 @@ PointDescriptors descriptors_of(const Pair& pair) {
     return {smooth_descriptors(pair.X.V), smooth_descriptors(pair.Y.V)};
 }
 
-// SPEC.md §8's sums written out in long double, with d_ij = |x_i − y_j|² + |φ_i − ψ_j|² + ε².
+// docs/formulas.md §8's sums written out in long double, with d_ij = |x_i − y_j|² + |φ_i − ψ_j|² +
+// ε².
 double augmented_reference(const Pair& pair, const PointDescriptors& descriptors, double alpha,
                            double epsilon) {
     const Eigen::VectorXd mx = lumped_masses(pair.X, MassType::Barycentric);

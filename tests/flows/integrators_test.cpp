@@ -27,8 +27,8 @@ Eigen::MatrixX3d implicit_fairing_step(const TriangleMesh& mesh, MassType mass, 
     return solver.solve(Eigen::MatrixXd(M * mesh.V));
 }
 
-// The identity of paper §4 (SPEC.md §2): one explicit H1 step of the area with λ = dt is one
-// implicit-fairing step, and so is one implicit (eq. 11) L2 step.
+// The identity of paper §4 (docs/formulas.md §2): one explicit H1 step of the area with λ = dt is
+// one implicit-fairing step, and so is one implicit (eq. 11) L2 step.
 TEST(Integrators, ExplicitH1StepOfAreaIsImplicitFairing) {
     const TriangleMesh mesh = test::noisy_icosphere(2, 0.2);
     for (const MassType mass : {MassType::Barycentric, MassType::Full}) {

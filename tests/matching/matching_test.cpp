@@ -151,8 +151,8 @@ private:
 };
 
 // After a step that had to backtrack, τ starts where that step was accepted, not at twice it
-// (SPEC.md §9's rule, DescentOptions::double_after_backtracking), which overshoots again: the
-// same descent, to about the same distance, in fewer trials per step. Measured on this limb
+// (docs/formulas.md §9's rule, DescentOptions::double_after_backtracking), which overshoots again:
+// the same descent, to about the same distance, in fewer trials per step. Measured on this limb
 // (H1): 1.85 trials per step doubling, 1.52 holding, the same distance to 4 digits. (In L2 the
 // flow is stiff and every step halves τ several times: 3.85 and 3.81.)
 TEST(GradientDescent, HoldsTheStepAfterBacktrackingAndTriesFewerSteps) {
@@ -347,8 +347,8 @@ TEST(Multiresolution, TransferRotatesDetailsWithABend) {
     const TriangleMesh moved =
         transfer(fine, coarse.mesh, bend_at_joints(coarse.mesh.V, joint), embed(fine, coarse.mesh));
     const Eigen::MatrixX3d truth = bend_at_joints(fine.V, joint);
-    // Against naive interpolation of displacements (details do not turn): SPEC.md §9 measured
-    // 1.3 % against 79 % detail error in the rigid zones.
+    // Against naive interpolation of displacements (details do not turn): docs/formulas.md §9
+    // measured 1.3 % against 79 % detail error in the rigid zones.
     const Embedding embedding = embed(fine, coarse.mesh);
     const Eigen::MatrixX3d bent_coarse = bend_at_joints(coarse.mesh.V, joint);
     Eigen::MatrixX3d naive = fine.V;
@@ -569,6 +569,51 @@ TEST(Match, CarriesTheCoarseMatchToTheInputResolution) {
     // (0.4 % on one level); the transfer itself is exact here (0.22 % with no flow steps).
     const double error = (result.deformed.V - truth.apply(template_mesh.V)).rowwise().norm().mean();
     EXPECT_LT(error, 0.02 * bounding_box_diagonal(target));
+}
+
+// A template as meshes come (a reversed duplicate face, a fin on an edge, a seam of coincident
+// vertices) is matched as its repaired surface, which here is the clean template: the same
+// result for its vertices, and the extra vertices carried along with their neighbours.
+TEST(Match, MatchesARepairedTemplateAndKeepsItsVertices) {
+    const TriangleMesh clean = make_limb(3);
+    TriangleMesh target = make_limb(4, 9);
+    target.V = some_similarity().apply(target.V);
+    MatchOptions options;
+    options.prior = MatchPrior::Rigid;
+    options.levels = 2;
+    TriangleMesh defective = clean;
+    const Eigen::Index n = clean.V.rows();
+    const int a = clean.F(0, 0);
+    const int b = clean.F(0, 1);
+    defective.V.conservativeResize(n + 2, 3);
+    defective.V.row(n) = clean.V.row(a) + 0.5 * (clean.V.row(b) - clean.V.row(a)) +
+                         0.05 * bounding_box_diagonal(clean) * Eigen::RowVector3d::UnitZ();
+    defective.V.row(n + 1) = clean.V.row(clean.F(1, 2));  // coincides with a used vertex
+    const Eigen::Index faces = clean.F.rows();
+    defective.F.conservativeResize(faces + 2, 3);
+    defective.F.row(faces) << b, a, static_cast<int>(n);  // a fin on edge a-b
+    defective.F.row(faces + 1) << clean.F(1, 0), static_cast<int>(n + 1), clean.F(1, 1);
+    ASSERT_FALSE(validate(defective).manifold());
+
+    const MatchResult plain = match(clean, target, options);
+    const MatchResult repaired = match(defective, target, options);
+    EXPECT_EQ(plain.template_repairs, "");
+    EXPECT_NE(repaired.template_repairs.find("duplicate faces: 1"), std::string::npos)
+        << repaired.template_repairs;
+    EXPECT_EQ(repaired.target_repairs, "");
+    ASSERT_EQ(repaired.deformed.V.rows(), n + 2);
+    EXPECT_EQ(repaired.deformed.F, defective.F);
+    const double diagonal = bounding_box_diagonal(target);
+    EXPECT_LT((repaired.deformed.V.topRows(n) - plain.deformed.V).cwiseAbs().maxCoeff(),
+              1e-9 * diagonal);
+    EXPECT_EQ(repaired.deformed.V.row(n + 1), repaired.deformed.V.row(clean.F(1, 2)));
+    // The fin's tip moved as the template's vertex nearest to it did.
+    Eigen::Index nearest = 0;
+    (clean.V.rowwise() - defective.V.row(n)).rowwise().squaredNorm().minCoeff(&nearest);
+    const Eigen::RowVector3d tip_motion = repaired.deformed.V.row(n) - defective.V.row(n);
+    const Eigen::RowVector3d nearest_motion =
+        repaired.deformed.V.row(nearest) - clean.V.row(nearest);
+    EXPECT_LT((tip_motion - nearest_motion).norm(), 1e-9 * diagonal);
 }
 
 // The stages show each level's template on its way, in order, as the level's vertices (nested

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The quasi-isometric metric (SPEC.md §7): G equals the edge-sum inner product, is SPD, costs
-// rigid motions only their L2 norm, means the same at every resolution, inverts exactly, and
+// The quasi-isometric metric (docs/formulas.md §7): G equals the edge-sum inner product, is SPD,
+// costs rigid motions only their L2 norm, means the same at every resolution, inverts exactly, and
 // solves the implicit step; fake edges join opposite sides of a limb.
 #include "genflow/metrics/quasi_isometric_metric.h"
 
@@ -34,8 +34,8 @@ VertexField random_field(Eigen::Index n, unsigned seed) {
     return field;
 }
 
-// ⟨U, V⟩ of SPEC.md §7 summed edge by edge, with A_e from an edge → faces map: independent of
-// the metric's per-face assembly.
+// ⟨U, V⟩ of docs/formulas.md §7 summed edge by edge, with A_e from an edge → faces map: independent
+// of the metric's per-face assembly.
 double edge_sum_inner_product(const TriangleMesh& mesh, double lambda, const VertexField& U,
                               const VertexField& V) {
     const Eigen::VectorXd m = lumped_masses(mesh, MassType::Barycentric);
@@ -105,8 +105,8 @@ TEST(QuasiIsometricMetric, RigidMotionsCostOnlyTheirL2Norm) {
     EXPECT_GT((metric.apply(stretch) - mass_times_stretch).norm(), 0.1 * mass_times_stretch.norm());
 }
 
-// SPEC.md §7: with w_e = A_e/|d_e|⁴ the stretch field (x, 0, 0) on the unit sphere costs the
-// same relative to its L2 norm at every resolution (0.6 λ), where w_e = 1 falls as h².
+// docs/formulas.md §7: with w_e = A_e/|d_e|⁴ the stretch field (x, 0, 0) on the unit sphere costs
+// the same relative to its L2 norm at every resolution (0.6 λ), where w_e = 1 falls as h².
 TEST(QuasiIsometricMetric, MeansTheSameAtEveryResolution) {
     std::vector<double> ratios;
     for (const int level : {2, 3, 4}) {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The prioritized subspace metric (SPEC.md §6) and the quasi-rigid prior (§5): G symmetric
+// The prioritized subspace metric (docs/formulas.md §6) and the quasi-rigid prior (§5): G symmetric
 // positive definite, gradient inverts apply, blocks M-orthonormal, rigid fields boosted by
 // exactly 1/μ, the Woodbury implicit solve equals a dense one.
 #include "genflow/metrics/subspace_metric.h"

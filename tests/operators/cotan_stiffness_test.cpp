@@ -79,7 +79,7 @@ TEST(CotanStiffness, LaplacianOfLinearFunctionVanishesAtInteriorVertices) {
 }
 
 TEST(CotanStiffness, GivesUnitMeanCurvatureOnTheUnitSphere) {
-    // ΔX = −M⁻¹KX = −2Hn with H = 1 on the unit sphere (SPEC.md §1: exact to 1e-5 with the
+    // ΔX = −M⁻¹KX = −2Hn with H = 1 on the unit sphere (docs/formulas.md §1: exact to 1e-5 with the
     // mixed mass at level 4).
     const TriangleMesh mesh = make_icosphere(4);
     const VertexField KX = cotan_stiffness(mesh) * mesh.V;

@@ -5,9 +5,9 @@
 
 namespace genflow {
 
-/// Signed enclosed volume E = V(X) = (1/6) Σ_f x_a·(x_b × x_c) (SPEC.md §1); its differential is
-/// `enclosed_volume_gradient()`. Add it with a weight to another energy to inflate (negative
-/// weight) or deflate a shape. It has no PSD linearization, so flows of it are explicit.
+/// Signed enclosed volume E = V(X) = (1/6) Σ_f x_a·(x_b × x_c) (docs/formulas.md §1); its
+/// differential is `enclosed_volume_gradient()`. Add it with a weight to another energy to inflate
+/// (negative weight) or deflate a shape. It has no PSD linearization, so flows of it are explicit.
 ///
 /// \note Meaningful only on closed meshes; on inward-oriented meshes the value is negative and
 ///       the differential points inward, so "decrease V" still means "grow the |V|" there: flip

@@ -20,13 +20,13 @@ struct PseudoHausdorffOptions {
     /// and the stiffer the flow. Stable for any α up to several hundred (log-domain sums).
     double alpha = 8.0;
     /// Regularization ε > 0, a length: d_ij = |x_i − y_j|² + ε². For matching take about the
-    /// target's mean edge length (SPEC.md §8: smaller values make the gradient snap vertices
-    /// tangentially).
+    /// target's mean edge length (docs/formulas.md §8: smaller values make the gradient snap
+    /// vertices tangentially).
     double epsilon = 0.0;
     /// Truncation τ ∈ [0, 0.5): each f_i (and g_j) sums only over the target (source) points
     /// within an adaptive radius, chosen so that the neglected part of every sum is at most
     /// τ times the sum. Then the relative error of d_H + ε is at most τ/(2α(1 − τ)).
-    /// The radius is the smaller of SPEC.md §8's (all weight assumed at the radius) and a
+    /// The radius is the smaller of docs/formulas.md §8's (all weight assumed at the radius) and a
     /// shell bound from how much weight the grid holds around the point (28 % fewer terms
     /// on the aligned TOSCA cat pair at τ = 1e-4, same guarantee).
     /// 0 evaluates the exact O(P·Q) sums.
@@ -68,7 +68,7 @@ struct PseudoHausdorffEvaluation {
                                                          const PointDescriptors& descriptors = {});
 
 /// The differentiable pseudo-Hausdorff distance of the paper's Appendix A (eq. 20) between the
-/// moving mesh X (the argument of every call) and a fixed target Y (SPEC.md §8):
+/// moving mesh X (the argument of every call) and a fixed target Y (docs/formulas.md §8):
 ///
 ///     f_i = Σ_j b_j d_ij^{−α},   g_j = Σ_i a_i d_ij^{−α},   d_ij = |x_i − y_j|² + ε²
 ///     S = Σ_i a_i/f_i + Σ_j b_j/g_j,   d_H = S^{1/(2α)} − ε,
@@ -76,9 +76,9 @@ struct PseudoHausdorffEvaluation {
 /// with a_i, b_j from the barycentric vertex masses (HausdorffWeights). Its differential is
 /// ∂d_H/∂x_i = Σ_j c_ij (x_i − y_j), c_ij = S^{1/(2α)−1} a_i b_j d_ij^{−α−1}(f_i^{−2} + g_j^{−2}),
 /// the paper's formula, which holds with the masses m^x frozen (they are recomputed at every
-/// evaluation; SPEC.md §8 measures the omitted mass term at 3–6 % of the gradient and keeps
-/// the frozen-mass descent direction). Its linearization is A = diag(Σ_j c_ij),
-/// B_i = −Σ_j c_ij y_j, exact at X.
+/// evaluation; docs/formulas.md §8 measures the omitted mass term at 3–6 % of the gradient and
+/// keeps the frozen-mass descent direction). Its linearization is A = diag(Σ_j c_ij), B_i = −Σ_j
+/// c_ij y_j, exact at X.
 ///
 /// Sums run in the log domain (no overflow or underflow for α up to hundreds and any scale);
 /// with truncation > 0 a uniform grid restricts them to near neighbours (as in the paper; the

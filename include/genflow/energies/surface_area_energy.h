@@ -12,7 +12,7 @@ namespace genflow {
 /// - differential: ∂A/∂X = K X (`surface_area_gradient()`), the mean-curvature normal times the
 ///   vertex areas.
 /// - linearization: A = K (the cotan stiffness matrix at X_t, symmetric PSD, singular), B = 0
-///   (SPEC.md §2 erratum: A is PSD, not PD, and the implicit system is still SPD).
+///   (docs/formulas.md §2: A is PSD, not PD, and the implicit system is still SPD).
 ///
 /// \note Works on any mesh `cotan_stiffness()` accepts; the linearization is exact at X_t up to
 ///       the cotangent clamp of needle triangles.

@@ -11,7 +11,7 @@
 namespace genflow {
 
 /// Parameters of gradient_descent(). Scale-free use: give max_displacement relative to the
-/// shape (SPEC.md §9: 2 % of the bounding-box diagonal).
+/// shape (docs/formulas.md §9: 2 % of the bounding-box diagonal).
 struct DescentOptions {
     /// No vertex moves farther than this in one step (a length, > 0): the step size is capped
     /// at max_displacement / max_i |g_i|, so the cap follows the shape, not the energy's units.
@@ -26,23 +26,23 @@ struct DescentOptions {
     double target_energy = -std::numeric_limits<double>::infinity();
     /// Stop after this much wall time, checked after every step.
     double max_seconds = std::numeric_limits<double>::infinity();
-    /// Implicit steps (paper eq. 11, SPEC.md §9): X ← X − τ (G + τA)⁻¹ dE/dX with A from the
-    /// energy's linearization (for d_H, A = diag Σ_j c_ij), the same backtracking on τ. As τ
+    /// Implicit steps (paper eq. 11, docs/formulas.md §9): X ← X − τ (G + τA)⁻¹ dE/dX with A from
+    /// the energy's linearization (for d_H, A = diag Σ_j c_ij), the same backtracking on τ. As τ
     /// grows the step tends to a prior-regularized projection instead of overshooting, so
     /// steps may be longer. Needs an energy with `linearize()`.
     bool implicit = false;
     /// Where τ starts after a step that had to backtrack (its first τ refused): at twice the τ
-    /// it took, as after any step (SPEC.md §9: min(2 τ_previous, cap)), or, false, at that τ
-    /// itself. Twice over it overshoots again: on the TOSCA cat's coarsest flows 1.84 trials
-    /// (d_H evaluations) per step with doubling, 1.49 without; the evaluation tables 14–45 %
-    /// faster (30 % in all) at means within ±0.05 % (docs/eval/results.md, "Holding the step
-    /// after backtracking").
+    /// it took, as after any step (docs/formulas.md §9: min(2 τ_previous, cap)), or, false, at that
+    /// τ itself. Twice over it overshoots again: on the TOSCA cat's coarsest flows 1.84 trials (d_H
+    /// evaluations) per step with doubling, 1.49 without; the evaluation tables 14–45 % faster (30
+    /// % in all) at means within ±0.05 % (docs/eval/results.md, "Holding the step after
+    /// backtracking").
     bool double_after_backtracking = false;
     /// Called after every accepted step; return false to stop (status Cancelled). Optional.
     std::function<bool(const FlowProgress&)> progress = {};
 };
 
-/// Steepest descent in the metric with Armijo backtracking (SPEC.md §9): g = G⁻¹ dE/dX,
+/// Steepest descent in the metric with Armijo backtracking (docs/formulas.md §9): g = G⁻¹ dE/dX,
 /// X ← X − τ g, where τ starts at min(2 τ_previous, cap), or at τ_previous after a step that
 /// backtracked (DescentOptions::double_after_backtracking), and is halved until
 /// E(X − τ g) ≤ E(X) − 10⁻⁴ τ ⟨dE, g⟩; the energy therefore decreases at every step. The

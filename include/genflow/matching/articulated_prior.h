@@ -13,11 +13,12 @@ struct QuasiArticulatedOptions {
     /// Penalty of the global rigid motion (translation, rotation; scaling at 10× this).
     double global = 5e-3;
     /// Penalty of the rotations of the parts one level below the root; each deeper level's is
-    /// 10× larger (SPEC.md §6: the boosts 1/μ decrease ×10 per level), at most `deepest`.
+    /// 10× larger (docs/formulas.md §6: the boosts 1/μ decrease ×10 per level), at most `deepest`.
     double first_level = 1e-2;
     double deepest = 0.5;
     /// Hard labels are blended over about this many mean edge lengths around each seam
-    /// (SPEC.md §6: W = (D + r²K)⁻¹ D χ, r ≥ 2–3 edge lengths); soft weights are used as given.
+    /// (docs/formulas.md §6: W = (D + r²K)⁻¹ D χ, r ≥ 2–3 edge lengths); soft weights are used as
+    /// given.
     double blend_edges = 3;
     /// The residual (the motion no part's rotation spans) is measured in H1 with λ = (k·h)²,
     /// k = smoothing_length and h the rest template's mean edge length, so that it moves
@@ -36,7 +37,7 @@ struct QuasiArticulatedOptions {
                                                  const Eigen::MatrixXd& weights,
                                                  double blend_edges);
 
-/// The quasi-articulated metric of SPEC.md §6 ("kinematic" basis): a SubspaceMetric whose
+/// The quasi-articulated metric of docs/formulas.md §6 ("kinematic" basis): a SubspaceMetric whose
 /// blocks are, in priority order, the global rigid motion, then for each level of the part
 /// tree the rotations W̃_k(i)·e_a × (x_i − c_k) of every part k at that level about its joint
 /// c_k, where W̃_k is the blended weight of the subtree hanging at k (a linearized linear-blend

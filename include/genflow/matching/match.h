@@ -19,11 +19,11 @@ namespace genflow {
 
 /// The deformation prior of a match: the metric in which the template flows (paper §6.3).
 enum class MatchPrior {
-    L2,           ///< plain L2: the baseline that slides and tears (paper Fig. 3)
-    H1,           ///< Sobolev H1: smooth, but no notion of rigidity
-    Rigid,        ///< quasi-rigid (paper eq. 16, SPEC.md §5): rigid motion and scaling are cheap
-    Articulated,  ///< quasi-articulated (SPEC.md §6): needs MatchOptions::parts
-    Isometric,    ///< quasi-isometric (SPEC.md §7): bends freely, resists local stretching
+    L2,     ///< plain L2: the baseline that slides and tears (paper Fig. 3)
+    H1,     ///< Sobolev H1: smooth, but no notion of rigidity
+    Rigid,  ///< quasi-rigid (paper eq. 16, docs/formulas.md §5): rigid motion and scaling are cheap
+    Articulated,  ///< quasi-articulated (docs/formulas.md §6): needs MatchOptions::parts
+    Isometric,  ///< quasi-isometric (docs/formulas.md §7): bends freely, resists local stretching
 };
 
 /// Every prior, in declaration order.
@@ -78,12 +78,12 @@ struct MatchOptions {
     MatchPrior prior = MatchPrior::H1;
     /// Exponent α of the pseudo-Hausdorff distance and its truncation τ (PseudoHausdorffOptions:
     /// the relative error of d_H is then below τ/(2α) = 6e-4, far below what a flow notices);
-    /// ε is the target's mean edge length (SPEC.md §8: smaller makes vertices snap
+    /// ε is the target's mean edge length (docs/formulas.md §8: smaller makes vertices snap
     /// tangentially).
     double alpha = 8;
     double truncation = 1e-2;
-    /// Multiresolution (paper §6.4, SPEC.md §9): the flow runs on QEM-coarsened template and
-    /// target first, then on finer levels, each started from the coarser result carried over by
+    /// Multiresolution (paper §6.4, docs/formulas.md §9): the flow runs on QEM-coarsened template
+    /// and target first, then on finer levels, each started from the coarser result carried over by
     /// rotation-interpolated offsets. `levels` = 0 chooses them: the coarsest has about
     /// `coarse_vertices`, each finer one 4× more, up to the input. Each target level is the target
     /// coarsened by the template's factor, to no fewer than half the template level's vertices.
@@ -103,7 +103,7 @@ struct MatchOptions {
     int max_iterations = 300;
     int fine_iterations = 15;
     /// No vertex moves farther than this fraction of the target's bounding-box diagonal in one
-    /// step (SPEC.md §9: 2 %).
+    /// step (docs/formulas.md §9: 2 %).
     double max_step = 0.02;
     /// Implicit steps (DescentOptions::implicit, paper eq. 11) instead of explicit ones. Measured
     /// (FAUST and centaur small): the coarsest level converges in 58–93 steps instead of 300,
@@ -441,6 +441,11 @@ struct MatchResult {
     /// between starts and stiffnesses), when it was computed: with several rigid starts or a
     /// guided prior. No ground truth is needed, so it can warn of any match (doubtful()).
     std::optional<double> intrinsic_disagreement;
+    /// What repair_surface() changed in the template and in the target before they were
+    /// matched (RepairedSurface::summary()), empty where nothing: `deformed` is in the
+    /// template's vertex order and count all the same.
+    std::string template_repairs;
+    std::string target_repairs;
     double alignment_seconds = 0;
     double seconds = 0;  ///< everything
     /// True if intrinsic_disagreement is above kDoubtfulDisagreement: the match is likely to
@@ -459,6 +464,11 @@ struct MatchResult {
 /// describes), then, from the coarsest level to the input, steepest descent with Armijo
 /// backtracking and a displacement cap (gradient_descent()), each level started from the coarser
 /// one by transfer(). ε is the mean edge length of each level's target.
+///
+/// Meshes as they come are matched as repair_surface() makes them (duplicate faces removed,
+/// coincident vertices welded, non-manifold vertices and edges split, the largest component);
+/// the template's other vertices follow their nearest matched neighbour, so `deformed` keeps
+/// the template's vertices and faces. MatchResult::template_repairs says what was repaired.
 ///
 /// \throws InvalidInput if a mesh is empty, has no face, zero area, bad indices or non-finite
 ///         coordinates, an option is out of range, or the articulated prior lacks a part

@@ -8,7 +8,8 @@
 
 namespace genflow {
 
-/// A coarse version of a mesh whose vertices are a subset of the fine ones (SPEC.md §9, step 1).
+/// A coarse version of a mesh whose vertices are a subset of the fine ones (docs/formulas.md §9,
+/// step 1).
 struct CoarseMesh {
     TriangleMesh mesh;                      ///< the coarse mesh (compact vertex numbering)
     std::vector<Eigen::Index> fine_vertex;  ///< coarse vertex k is fine vertex fine_vertex[k]
@@ -34,7 +35,7 @@ struct CoarseMesh {
 [[nodiscard]] CoarseMesh coarsen_to_share(const TriangleMesh& mesh, double share);
 
 /// Where each fine vertex sits relative to a coarse mesh: on coarse face `face` at barycentric
-/// `barycentric`, plus the offset `offset` = p − Σ β_b x_b (SPEC.md §9, step 2).
+/// `barycentric`, plus the offset `offset` = p − Σ β_b x_b (docs/formulas.md §9, step 2).
 struct Embedding {
     Eigen::VectorXi face;
     Eigen::MatrixX3d barycentric;
@@ -59,8 +60,8 @@ struct Embedding {
 [[nodiscard]] Embedding embed(const TriangleMesh& fine, const CoarseMesh& coarse);
 
 /// The fine mesh after its coarse version moved from `coarse_rest` to `coarse_deformed` (same
-/// faces), by rotation-interpolated local offsets (SPEC.md §9, step 4): each coarse vertex gets
-/// the rotation R_b = polar(Σ_{j∈N(b)} (x'_j − x'_b)(x_j − x_b)ᵀ + h² n'_b n_bᵀ) of its one
+/// faces), by rotation-interpolated local offsets (docs/formulas.md §9, step 4): each coarse vertex
+/// gets the rotation R_b = polar(Σ_{j∈N(b)} (x'_j − x'_b)(x_j − x_b)ᵀ + h² n'_b n_bᵀ) of its one
 /// ring, and each fine vertex goes to p' = Σ β_b x'_b + polar(Σ β_b R_b)·o. Exact for rigid
 /// motions; the offsets rotate with the surface, so details are not sheared by bends.
 /// \throws InvalidInput if the sizes of the embedding, meshes and positions disagree.

@@ -73,7 +73,7 @@ struct ValidationReport {
     [[nodiscard]] std::string first_error() const;
 };
 
-/// Checks everything about `mesh` that an algorithm might trip over (STYLE.md §3.4): this is the
+/// Checks everything about `mesh` that an algorithm might trip over: this is the
 /// one expensive check, O(#F log #F), that the CLI and the pipelines run once per input.
 ///
 /// Errors (the mesh is refused): no vertices, no faces, non-finite coordinates, indices out of

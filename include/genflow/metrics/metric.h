@@ -45,7 +45,7 @@ public:
 
     /// (G + dt·A)⁻¹·R, the solve of the implicit step (eq. 11): with R = dE/dX(X_t) = A X_t + B,
     /// X_{t+dt} = X_t − dt·(G + dt·A)⁻¹ R is the solution of (G + dt·A) X' = G X_t − dt·B.
-    /// Equivalently, an explicit step in the metric G + dt·A (SPEC.md §2).
+    /// Equivalently, an explicit step in the metric G + dt·A (docs/formulas.md §2).
     /// \param A  #V×#V symmetric PSD (`Linearization::A`) acting on each coordinate.
     /// \throws InvalidInput if sizes differ or dt is negative or not finite.
     /// \throws SolverError  if the system cannot be solved.

@@ -10,7 +10,7 @@
 
 namespace genflow {
 
-/// Parameters of the quasi-isometric prior (paper §6.3.3, SPEC.md §7).
+/// Parameters of the quasi-isometric prior (paper §6.3.3, docs/formulas.md §7).
 struct QuasiIsometricOptions {
     /// The rigidity length ℓ_iso as a fraction of the bounding-box diagonal: stretching a
     /// patch of size s costs about (ℓ_iso/s)² times as much as moving it, so shapes bend and
@@ -19,18 +19,18 @@ struct QuasiIsometricOptions {
     /// bends better (the generated limb bent by 35°: mean error 0.029, 0.028, 0.026, 0.024 of
     /// the diagonal at 0.05, 0.1, 0.2, 0.4), at more steps per level.
     double rigidity_length = 0.2;
-    /// Extra "fake" edges across limbs (SPEC.md §7) for rigidity across a part's thickness,
-    /// chosen once at the first update(); 0 = none.
+    /// Extra "fake" edges across limbs (docs/formulas.md §7) for rigidity across a part's
+    /// thickness, chosen once at the first update(); 0 = none.
     int fake_edges = 0;
     /// β: the weight of a fake edge relative to a mesh edge of the same length and mass.
     double fake_edge_weight = 1;
     /// Rebuild and refactor G at every `refresh_interval`-th update() only; in between, G of
     /// the last rebuild stays in force. Any SPD G gives a descent direction, so a flow still
-    /// descends; 1 = the metric of SPEC.md §7 at every step.
+    /// descends; 1 = the metric of docs/formulas.md §7 at every step.
     int refresh_interval = 1;
 };
 
-/// The quasi-isometric metric of SPEC.md §7: for fields U, V,
+/// The quasi-isometric metric of docs/formulas.md §7: for fields U, V,
 ///
 ///     ⟨U, V⟩ = Σ_i m_i u_i·v_i + λ_iso Σ_e w_e [(u_i − u_j)·d_e][(v_i − v_j)·d_e],
 ///
@@ -72,9 +72,9 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-/// Pairs of vertices across the thickness of `mesh` (SPEC.md §7): for `count` vertices spread
-/// by farthest-point sampling, a ray from the vertex along its inward normal, and the vertex of
-/// the first face hit that lies nearest the hit. Vertices whose ray leaves the mesh are skipped,
+/// Pairs of vertices across the thickness of `mesh` (docs/formulas.md §7): for `count` vertices
+/// spread by farthest-point sampling, a ray from the vertex along its inward normal, and the vertex
+/// of the first face hit that lies nearest the hit. Vertices whose ray leaves the mesh are skipped,
 /// so fewer pairs may come back; no pair repeats.
 [[nodiscard]] std::vector<std::pair<int, int>> cross_limb_pairs(const TriangleMesh& mesh,
                                                                 int count);

@@ -26,7 +26,7 @@ struct SobolevOptions {
 ///
 /// with K the cotan stiffness matrix (`cotan_stiffness()`, symmetric PSD). Stepping along the
 /// H1 gradient of the surface area with λ = dt is exactly implicit fairing
-/// (M + dt K) X' = M X [Desbrun et al. 1999] (SPEC.md §2).
+/// (M + dt K) X' = M X [Desbrun et al. 1999] (docs/formulas.md §2).
 ///
 /// \note Works on any triangle mesh, with or without boundary, several components; degenerate
 ///       triangles get clamped cotangents and zero mass instead of NaN.
@@ -51,13 +51,13 @@ private:
     std::unique_ptr<PatternCache> pattern_cache_;
 };
 
-/// The Sobolev H2 metric, L = Id − λΔ + μΔ² (paper §4, SPEC.md §3):
+/// The Sobolev H2 metric, L = Id − λΔ + μΔ² (paper §4, docs/formulas.md §3):
 ///
 ///     G = M + λ K + μ K D⁻¹ K,
 ///
 /// with D the lumped barycentric mass (the inverse of the full mass matrix would be dense);
 /// G has two-ring sparsity. For the area with λ = dt, one explicit step solves
-/// (M + dt K + μ K D⁻¹ K) X' = (M + μ K D⁻¹ K) X (SPEC.md §3; erratum 4: this is not
+/// (M + dt K + μ K D⁻¹ K) X' = (M + μ K D⁻¹ K) X (docs/formulas.md §3: this is not
 /// Desbrun et al.'s higher-order fairing).
 class H2Metric final : public SparseMetric {
 public:

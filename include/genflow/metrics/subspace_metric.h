@@ -11,7 +11,7 @@
 
 namespace genflow {
 
-/// A block of deformation fields that a subspace metric treats alike (SPEC.md §6).
+/// A block of deformation fields that a subspace metric treats alike (docs/formulas.md §6).
 struct FieldBlock {
     /// 3n×m: column c is one field, the vector of vertex i in rows 3i, 3i+1, 3i+2.
     Eigen::MatrixXd fields;
@@ -31,17 +31,17 @@ struct SubspaceOptions {
     MassType mass = MassType::Barycentric;
 };
 
-/// The prioritized subspace metric of SPEC.md §6, one mechanism for the quasi-rigid (§6.3.1)
-/// and quasi-articulated (§6.3.2) priors: given blocks B_1, …, B_K with penalties μ_k, block
-/// Gram–Schmidt in a base inner product B (the lumped mass M by default: the paper's L2) gives
-/// B-orthonormal Q_k (each block minus what earlier blocks span; directions already spanned
+/// The prioritized subspace metric of docs/formulas.md §6, one mechanism for the quasi-rigid
+/// (§6.3.1) and quasi-articulated (§6.3.2) priors: given blocks B_1, …, B_K with penalties μ_k,
+/// block Gram–Schmidt in a base inner product B (the lumped mass M by default: the paper's L2)
+/// gives B-orthonormal Q_k (each block minus what earlier blocks span; directions already spanned
 /// are dropped), and
 ///
 ///     G = B + Σ_k (μ_k − 1) B Q_k Q_kᵀ B,   G⁻¹ dE = B⁻¹ dE + Σ_k (1/μ_k − 1) Q_k Q_kᵀ dE,
 ///
-/// which is SPD for any μ_k > 0 (the paper's eqs. 17–19 are not; see SPEC.md §6): the blocks'
-/// motions cost μ_k times their B-norm, the residual its B-norm. With B = M (L = I + Σ (μ_k − 1)
-/// Q_k Q_kᵀ M) the residual is free to move each vertex alone, as L2 does; with a Sobolev base
+/// which is SPD for any μ_k > 0 (the paper's eqs. 17–19 are not; see docs/formulas.md §6): the
+/// blocks' motions cost μ_k times their B-norm, the residual its B-norm. With B = M (L = I + Σ (μ_k
+/// − 1) Q_k Q_kᵀ M) the residual is free to move each vertex alone, as L2 does; with a Sobolev base
 /// (the `base` constructor argument, e.g. H1Metric) it moves smoothly. The blocks are rebuilt
 /// from the current positions at every `update()`; applying G or G⁻¹ costs O(n·m) plus one
 /// application of B or B⁻¹, the rebuild O(n·m²) plus m applications of B, for m fields in all:
@@ -49,7 +49,7 @@ struct SubspaceOptions {
 ///
 /// The implicit step (`shifted_gradient`) supports a diagonal A (the pseudo-Hausdorff
 /// linearization): G + dt·A = E + U Γ Uᵀ with E = B + dt·A, U = [B Q_k] and Γ = diag(μ_k − 1),
-/// solved by the Woodbury identity (SPEC.md §9). With the default base E is diagonal; with
+/// solved by the Woodbury identity (docs/formulas.md §9). With the default base E is diagonal; with
 /// another, E is solved by its own shifted_gradient() once per non-neutral field plus once.
 ///
 /// \note Fixed vertices are not supported (update() throws if a mask is set).
@@ -100,7 +100,8 @@ private:
 };
 
 /// Penalties of the quasi-rigid prior (paper §6.3.1): each in (0, 1], smaller = that motion is
-/// cheaper. The defaults are SPEC.md §9's (a step is then almost entirely rigid plus scaling).
+/// cheaper. The defaults are docs/formulas.md §9's (a step is then almost entirely rigid plus
+/// scaling).
 struct QuasiRigidOptions {
     double translation = 5e-3;
     double rotation = 5e-3;
@@ -109,8 +110,8 @@ struct QuasiRigidOptions {
 };
 
 /// The fields of rigid motion and scaling at the current positions: translations e_a,
-/// rotations e_a × (x_i − c) and the scaling x_i − c about the M-centroid c (SPEC.md §5: the
-/// blocks are M-orthogonal only for that centre), in blocks T, R, S with the given penalties.
+/// rotations e_a × (x_i − c) and the scaling x_i − c about the M-centroid c (docs/formulas.md §5:
+/// the blocks are M-orthogonal only for that centre), in blocks T, R, S with the given penalties.
 [[nodiscard]] std::vector<FieldBlock> rigid_motion_blocks(const TriangleMesh& mesh,
                                                           const Eigen::VectorXd& masses,
                                                           const QuasiRigidOptions& options);

@@ -11,15 +11,16 @@ namespace genflow {
 struct VolumeControlledOptions {
     /// Penalty λ ∈ (0, 1] on motions that change the volume locally. λ = 1 is the plain
     /// (lumped barycentric) L2 metric; as λ → 0 volume-changing motions are suppressed, and
-    /// the volume lost by a flow is about λ times what the plain metric loses (SPEC.md §4).
+    /// the volume lost by a flow is about λ times what the plain metric loses (docs/formulas.md
+    /// §4).
     double lambda = 0.05;
     /// Relative tolerance of the iterative solves (CG for `apply()`, GMRES for the implicit
     /// step).
     double tolerance = 1e-10;
 };
 
-/// The volume-controlled metric of paper §5, in the corrected form of SPEC.md §4 (the printed
-/// Π_VP is neither a projection nor self-adjoint and makes eq. 13 diverge).
+/// The volume-controlled metric of paper §5, in the corrected form of docs/formulas.md §4 (the
+/// printed Π_VP is neither a projection nor self-adjoint and makes eq. 13 diverge).
 ///
 /// With f = Nᵀv the normal speeds (unit area-weighted normals N), D the lumped barycentric
 /// masses and the one-ring averaging Ψ_ij = [j ∈ N⁺(i)]/|N⁺(j)|, a = Ψm:

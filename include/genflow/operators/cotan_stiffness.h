@@ -17,7 +17,7 @@ struct CotanOptions {
     double max_cotangent = 1e3;
 };
 
-/// The cotangent stiffness matrix K (paper §2, SPEC.md §1), #V×#V, sparse:
+/// The cotangent stiffness matrix K (paper §2, docs/formulas.md §1), #V×#V, sparse:
 ///
 ///     K_ij = −½ (cot α_ij + cot β_ij)   for an edge ij (one term on a boundary edge),
 ///     K_ii = −Σ_{j≠i} K_ij,
@@ -25,7 +25,7 @@ struct CotanOptions {
 /// with α_ij, β_ij the angles opposite the edge.
 ///
 /// **Sign convention:** K is symmetric *positive* semi-definite and K·1 = 0; it is the FEM
-/// stiffness matrix ∫∇φ_i·∇φ_j. In SPEC.md's notation K = −C, where C is the (negative
+/// stiffness matrix ∫∇φ_i·∇φ_j. In the paper's notation K = −C, where C is the (negative
 /// semi-definite) cotan Laplacian, so the Laplace–Beltrami operator is Δ = −M⁻¹K, the area
 /// gradient is ∂A/∂X = K X, and the H1 metric is G = M + λK.
 ///

@@ -7,7 +7,7 @@
 
 namespace genflow {
 
-/// Which mass matrix (SPEC.md §1).
+/// Which mass matrix (docs/formulas.md §1).
 enum class MassType {
     /// The consistent FEM mass matrix: M_ij = Σ_{f∋i,j} A_f/12, M_ii = Σ_{f∋i} A_f/6.
     /// UᵀMW is the exact L2 product of the piecewise-linear fields U and W.

@@ -24,7 +24,7 @@ struct SmoothingOptions {
     /// H2 only: weight μ of the Δ² term in units of h⁴.
     double mu = 1.0;
     /// Volume-controlled fairing only: the volume penalty λ ∈ (0, 1]; the volume loss is about
-    /// λ times that of plain fairing (SPEC.md §4).
+    /// λ times that of plain fairing (docs/formulas.md §4).
     double volume_lambda = 0.05;
     /// Keep the boundary vertices where they are.
     bool fix_boundary = false;
@@ -49,12 +49,12 @@ struct SmoothingOptions {
 
 /// Higher-order fairing: the explicit flow of the area in the H2 metric with λ = dt (or
 /// options.lambda·h²) and μ = options.mu·h⁴, i.e. (M + dt K + μ K D⁻¹K) X' = (M + μ K D⁻¹K) X
-/// (SPEC.md §3).
+/// (docs/formulas.md §3).
 /// \throws InvalidInput as `mean_curvature_flow()`.
 [[nodiscard]] FlowResult higher_order_fairing(const TriangleMesh& mesh,
                                               const SmoothingOptions& options);
 
-/// Volume-controlled implicit fairing (paper §5, eq. 13 as corrected in SPEC.md §4): the
+/// Volume-controlled implicit fairing (paper §5, eq. 13 as corrected in docs/formulas.md §4): the
 /// implicit (eq. 11) flow of the area in the VolumeControlledMetric with λ =
 /// options.volume_lambda, i.e. (D B⁻¹ + dt K) X' = D B⁻¹ X. It smooths like implicit fairing
 /// while losing about λ times its volume; inward-oriented meshes behave the same.

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+#include "matching/carried_back.h"
+
+#include <string>
+#include <vector>
+
+#include "genflow/exceptions.h"
+#include "spatial/point_index.h"
+
+namespace genflow::detail {
+
+Eigen::MatrixX3d carried_back(const RepairedSurface& repaired, const Eigen::MatrixX3d& input_rest,
+                              const Eigen::MatrixX3d& positions) {
+    if (positions.rows() != repaired.mesh.V.rows()) {
+        throw InvalidInput("carried_back: need " + std::to_string(repaired.mesh.V.rows()) +
+                           " positions, got " + std::to_string(positions.rows()));
+    }
+    const auto input_vertices = static_cast<Eigen::Index>(repaired.repaired_vertex.size());
+    std::vector<Eigen::Index> carried;
+    for (Eigen::Index v = 0; v < input_vertices; ++v) {
+        if (repaired.repaired_vertex[static_cast<std::size_t>(v)] >= 0) {
+            carried.push_back(v);
+        }
+    }
+    Eigen::MatrixX3d carried_rest(static_cast<Eigen::Index>(carried.size()), 3);
+    for (std::size_t i = 0; i < carried.size(); ++i) {
+        carried_rest.row(static_cast<Eigen::Index>(i)) = input_rest.row(carried[i]);
+    }
+    const PointIndex index(carried_rest);
+    Eigen::MatrixX3d moved(input_vertices, 3);
+    for (Eigen::Index v = 0; v < input_vertices; ++v) {
+        const Eigen::Index own = repaired.repaired_vertex[static_cast<std::size_t>(v)];
+        if (own >= 0) {
+            moved.row(v) = positions.row(own);
+            continue;
+        }
+        const Eigen::Index nearest =
+            carried[static_cast<std::size_t>(index.nearest(input_rest.row(v).transpose()).first)];
+        const Eigen::Index by = repaired.repaired_vertex[static_cast<std::size_t>(nearest)];
+        moved.row(v) = input_rest.row(v) + positions.row(by) - input_rest.row(nearest);
+    }
+    return moved;
+}
+
+}  // namespace genflow::detail
