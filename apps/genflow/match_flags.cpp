@@ -6,6 +6,19 @@
 namespace genflow::cli {
 
 void add_match_flags(CLI::App& command, MatchFlags& flags) {
+    // Applied as soon as it is read, so that the other flags, applied after the whole line is
+    // read, override it wherever they stand.
+    command
+        .add_option_function<std::string>(
+            "--preset",
+            [&flags](const std::string& preset) {
+                flags.match = preset == "paper" ? paper_match_options() : MatchOptions{};
+            },
+            "Starting values of the options below: default, or paper (the paper's flow over "
+            "the resolution levels alone, from the inputs' frames: no alignment, guidance, "
+            "second opinions, fits or limb exchanges; the ablation's baseline)")
+        ->check(CLI::IsMember({"default", "paper"}))
+        ->trigger_on_parse();
     command
         .add_option("--prior", flags.prior,
                     "Deformation prior (the metric of the flow): l2 (baseline), h1 (smooth), "
@@ -159,10 +172,10 @@ MatchOptions resolved(const MatchFlags& flags, bool has_parts) {
     const std::string prior =
         !flags.prior.empty() ? flags.prior : (has_parts ? "articulated" : "h1");
     options.prior = *parse_match_prior(prior);
-    options.align = !flags.no_align;
-    options.turn_back_parts = !flags.no_turn_back;
-    options.swap_limbs = !flags.no_limb_swaps;
-    options.signature_fallback = !flags.no_signature_fallback;
+    options.align = options.align && !flags.no_align;
+    options.turn_back_parts = options.turn_back_parts && !flags.no_turn_back;
+    options.swap_limbs = options.swap_limbs && !flags.no_limb_swaps;
+    options.signature_fallback = options.signature_fallback && !flags.no_signature_fallback;
     return options;
 }
 

@@ -69,6 +69,25 @@ std::optional<MatchPrior> parse_match_prior(const std::string& name) {
     return std::nullopt;
 }
 
+MatchOptions paper_match_options() {
+    MatchOptions options;
+    options.align = false;
+    options.alignment_candidates = 1;
+    options.signature_guidance = 0;
+    options.eigenfunction_guidance = 0;
+    options.stretch_weight = 0;
+    options.stiffness_candidates = 1;
+    options.guidance_candidates = 1;
+    options.signature_fallback = false;
+    options.refinement_guidances = 0;
+    options.turn_back_parts = false;
+    options.map_fits = 0;
+    options.second_opinion_above = std::numeric_limits<double>::infinity();
+    options.alternative_starts = 0;
+    options.swap_limbs = false;
+    return options;
+}
+
 namespace {
 
 void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,

@@ -132,6 +132,32 @@ TEST(MatchCli, RunsTheIsometricPriorWithItsOptionsAndImplicitSteps) {
     EXPECT_EQ(quiet.err, "");
 }
 
+// --preset paper starts from paper_match_options(); the other flags override it wherever they
+// stand on the line.
+TEST(MatchCli, PaperPresetTurnsTheStagesOffAndFlagsOverrideIt) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "template.ply", make_limb(3));
+    write_mesh(directory / "target.ply", make_limb(3, 5));
+    const std::string command = "match " + quoted(directory / "template.ply") + " " +
+                                quoted(directory / "target.ply") + " -o " +
+                                quoted(directory / "out.ply") + " --json";
+    const auto paper = run_genflow(command + " --preset paper");
+    ASSERT_EQ(paper.exit_code, 0) << paper.err;
+    const auto summary = nlohmann::json::parse(paper.out);
+    EXPECT_TRUE(summary["intrinsic_disagreement"].is_null());
+    EXPECT_EQ(summary["map_fits"], 0);
+    EXPECT_EQ(summary["levels"].size(), 1U);  // automatic: the limb is small
+    for (const std::string& line :
+         {command + " --levels 2 --preset paper", command + " --preset paper --levels 2"}) {
+        const auto two_levels = run_genflow(line);
+        ASSERT_EQ(two_levels.exit_code, 0) << two_levels.err;
+        EXPECT_EQ(nlohmann::json::parse(two_levels.out)["levels"].size(), 2U) << line;
+    }
+    const auto unknown = run_genflow(command + " --preset fast");
+    EXPECT_NE(unknown.exit_code, 0);
+    EXPECT_NE(unknown.err.find("--preset"), std::string::npos) << unknown.err;
+}
+
 // A template that is not manifold (a fin on an edge, a face written twice) is matched as
 // repaired, with a warning; the output keeps all its vertices and faces.
 TEST(MatchCli, MatchesANonManifoldTemplateAsRepaired) {

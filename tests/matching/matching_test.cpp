@@ -571,6 +571,27 @@ TEST(Match, CarriesTheCoarseMatchToTheInputResolution) {
     EXPECT_LT(error, 0.02 * bounding_box_diagonal(target));
 }
 
+// The paper preset runs the flow over the levels and nothing else: no rigid start, no guided
+// round, no intrinsic analysis; on the bent limb, in a shared frame, it still matches.
+TEST(Match, PaperPresetFlowsOverTheLevelsAlone) {
+    const BentLimbPair pair;
+    MatchOptions options = paper_match_options();
+    options.levels = 2;  // the limb is small enough for one level by default
+    const MatchResult result = match(pair.template_mesh, pair.target, options);
+    EXPECT_EQ(result.levels.size(), 2U);
+    EXPECT_TRUE(result.initial_alignment.matrix().isIdentity());
+    EXPECT_FALSE(result.intrinsic_disagreement.has_value());
+    EXPECT_FALSE(result.second_opinion_disagreement.has_value());
+    EXPECT_EQ(result.stretch_weight, 0);
+    EXPECT_EQ(result.eigenfunction_guidance, 0);
+    EXPECT_EQ(result.refinement_guidance, 0);
+    EXPECT_EQ(result.map_fits + result.turned_parts + result.swapped_limbs, 0);
+    EXPECT_EQ(result.alternative_starts, 0);
+    // Measured 3.2 % of the diagonal in 0.3 s, against the default's 1.8 % in 5.7 s (both from
+    // the inputs' frame, two levels): the bent part slides along itself without guidance.
+    EXPECT_LT(pair.error(result), 0.04);
+}
+
 // A template as meshes come (a reversed duplicate face, a fin on an edge, a seam of coincident
 // vertices) is matched as its repaired surface, which here is the clean template: the same
 // result for its vertices, and the extra vertices carried along with their neighbours.

@@ -457,6 +457,14 @@ struct MatchResult {
     }
 };
 
+/// The paper's matcher alone: the flow of eq. 14 in the prior's metric over the multiresolution
+/// levels of §6.4, from the inputs as they are placed. Every stage the default adds is off: the
+/// global alignment and its rigid starts, the guided coarsest rounds (signatures,
+/// eigenfunctions, stretching), the refinement's guided flows, turned-back parts, fits to the
+/// fine map, second opinions, alternative starts and limb exchanges. The baseline of the
+/// ablation in docs/matching.md; the inputs must share a frame, as in the paper.
+[[nodiscard]] MatchOptions paper_match_options();
+
 /// Deforms `template_mesh` onto `target` (another pose of the same subject, any sampling and
 /// connectivity) by the flow of the pseudo-Hausdorff distance in the metric of the prior
 /// (paper eq. 14): optional global rigid alignment (rigid_alignment_candidates(); with several
