@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "matching/carried_back.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,11 +23,12 @@ Eigen::MatrixX3d carried_back(const RepairedSurface& repaired, const Eigen::Matr
             carried.push_back(v);
         }
     }
-    Eigen::MatrixX3d carried_rest(static_cast<Eigen::Index>(carried.size()), 3);
-    for (std::size_t i = 0; i < carried.size(); ++i) {
-        carried_rest.row(static_cast<Eigen::Index>(i)) = input_rest.row(carried[i]);
+    // The nearest carried vertex is searched for only where some vertex is not carried (most
+    // repairs only remove faces or weld vertices).
+    std::optional<PointIndex> index;
+    if (static_cast<Eigen::Index>(carried.size()) < input_vertices) {
+        index.emplace(input_rest(carried, Eigen::all));
     }
-    const PointIndex index(carried_rest);
     Eigen::MatrixX3d moved(input_vertices, 3);
     for (Eigen::Index v = 0; v < input_vertices; ++v) {
         const Eigen::Index own = repaired.repaired_vertex[static_cast<std::size_t>(v)];
@@ -35,7 +37,7 @@ Eigen::MatrixX3d carried_back(const RepairedSurface& repaired, const Eigen::Matr
             continue;
         }
         const Eigen::Index nearest =
-            carried[static_cast<std::size_t>(index.nearest(input_rest.row(v).transpose()).first)];
+            carried[static_cast<std::size_t>(index->nearest(input_rest.row(v).transpose()).first)];
         const Eigen::Index by = repaired.repaired_vertex[static_cast<std::size_t>(nearest)];
         moved.row(v) = input_rest.row(v) + positions.row(by) - input_rest.row(nearest);
     }

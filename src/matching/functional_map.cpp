@@ -50,6 +50,17 @@ Eigen::RowVectorXd embedding_weights(const Eigen::VectorXd& values) {
     return values.array().max(1e-3 * values.maxCoeff()).rsqrt().matrix().transpose();
 }
 
+Eigen::MatrixXd fitted_orthogonal_map(const Eigen::MatrixXd& from_functions,
+                                      const Eigen::VectorXd& from_masses,
+                                      const Eigen::MatrixXd& to_functions,
+                                      const std::vector<Eigen::Index>& correspondence,
+                                      Eigen::Index size) {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
+        fitted_functional_map(from_functions, from_masses, to_functions, correspondence, size),
+        Eigen::ComputeFullU | Eigen::ComputeFullV);
+    return svd.matrixU() * svd.matrixV().transpose();
+}
+
 std::vector<Eigen::Index> zoom_out(const Eigen::MatrixXd& from_functions,
                                    const Eigen::VectorXd& from_masses,
                                    const Eigen::MatrixXd& to_functions,
@@ -58,10 +69,8 @@ std::vector<Eigen::Index> zoom_out(const Eigen::MatrixXd& from_functions,
                                    Eigen::Index count, Eigen::Index step) {
     for (Eigen::Index size = std::min(first, count);;
          size = std::min(size + std::max<Eigen::Index>(step, 1), count)) {
-        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
-            fitted_functional_map(from_functions, from_masses, to_functions, correspondence, size),
-            Eigen::ComputeFullU | Eigen::ComputeFullV);
-        const Eigen::MatrixXd orthogonal = svd.matrixU() * svd.matrixV().transpose();
+        const Eigen::MatrixXd orthogonal =
+            fitted_orthogonal_map(from_functions, from_masses, to_functions, correspondence, size);
         const auto scaled = weights.head(size).asDiagonal();
         correspondence = nearest_rows(from_functions.leftCols(size) * orthogonal * scaled,
                                       to_functions.leftCols(size) * scaled);

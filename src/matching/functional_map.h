@@ -23,6 +23,14 @@ namespace genflow::detail {
                                                     const std::vector<Eigen::Index>& correspondence,
                                                     Eigen::Index size);
 
+/// The orthogonal map nearest to fitted_functional_map() (U Vᵀ of its SVD): a near-isometry
+/// keeps the basis orthonormal, so its map is orthogonal.
+[[nodiscard]] Eigen::MatrixXd fitted_orthogonal_map(const Eigen::MatrixXd& from_functions,
+                                                    const Eigen::VectorXd& from_masses,
+                                                    const Eigen::MatrixXd& to_functions,
+                                                    const std::vector<Eigen::Index>& correspondence,
+                                                    Eigen::Index size);
+
 /// Per function, the weight 1/√λ_k of the embedding ZoomOut matches in (the low functions vary
 /// smoothly over whole parts, the high ones are noisier), with λ floored at 1/1000 of the
 /// largest (for meshes of several components, whose λ vanish).

@@ -266,12 +266,9 @@ std::vector<Eigen::Index> spread_vertices(const TriangleMesh& mesh, Eigen::Index
 Eigen::MatrixXd orthogonal_fit(const Spectrum& from, const Spectrum& to,
                                const std::vector<Eigen::Index>& samples,
                                const std::vector<Eigen::Index>& correspondence, Eigen::Index size) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
-        detail::fitted_functional_map(from.basis.functions(samples, Eigen::all),
-                                      from.basis.masses(samples), to.basis.functions,
-                                      correspondence, size),
-        Eigen::ComputeFullU | Eigen::ComputeFullV);
-    return svd.matrixU() * svd.matrixV().transpose();
+    return detail::fitted_orthogonal_map(from.basis.functions(samples, Eigen::all),
+                                         from.basis.masses(samples), to.basis.functions,
+                                         correspondence, size);
 }
 
 // ZoomOut (Melzi et al. 2019) from the map C of the lowest k functions up to `refined`: its
