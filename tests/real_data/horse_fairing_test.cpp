@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The fairing benchmark of issue 3 on real data: the noisy Cyberware horse against the clean
+// Fairing on real data: the noisy Cyberware horse against the clean
 // one (same connectivity, faces pointing inward). Volume-controlled fairing must reach an RMS
 // error no worse than plain implicit fairing at its best step count while changing the volume
 // by less than 0.5%.
