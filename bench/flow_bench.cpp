@@ -20,13 +20,13 @@
 
 #include "genflow/energies/surface_area_energy.h"
 #include "genflow/io/read_mesh.h"
-#include "genflow/matching/articulated_prior.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/metrics/volume_controlled_metric.h"
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mass_matrix.h"
 #include "genflow/operators/mesh_size.h"
+#include "genflow/parts/quasi_articulated_metric.h"
 
 namespace {
 

@@ -27,6 +27,7 @@
 #include "genflow/io/atomic_file.h"
 #include "genflow/io/mesh_format.h"
 #include "genflow/io/read_reference_points.h"
+#include "genflow/io/write_correspondences.h"
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/spectral_map.h"
 #include "genflow/operators/area.h"

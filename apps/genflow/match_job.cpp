@@ -6,6 +6,7 @@
 #include "cli_support.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
+#include "genflow/io/write_correspondences.h"
 #include "genflow/io/write_mesh.h"
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/correspondence_error.h"

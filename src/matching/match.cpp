@@ -27,6 +27,7 @@
 #include "matching/fine_spectrum.h"
 #include "matching/intrinsic_start.h"
 #include "matching/map_fit.h"
+#include "matching/selection.h"
 #include "matching/side_by_side.h"
 #include "matching/similarity_scale.h"
 #include "matching/spectral_descriptors.h"
@@ -168,43 +169,6 @@ namespace {
 // MatchOptions::map_fits: the smoothing length of a fit over the target's bounding-box
 // diagonal.
 constexpr double kMapFitLength = 0.01;
-// MatchOptions::second_opinion_above, alternative_starts: how much less an intrinsic start's
-// result must disagree than the rigid starts' best to replace it. The disagreement ranks
-// results that are far apart well (TOSCA michael kneeling: 0.14 from the intrinsic start,
-// 1.1 % off, against 0.57 from the best rigid one) but not near ties: FAUST 003→000
-// (articulated) matched front to back from an intrinsic start, 17 % off at the coarsest level,
-// at 0.33, against 0.40 for the rigid start's 4.4 % (0.86 % at the end).
-constexpr double kIntrinsicMargin = 0.25;
-// Near a tie the turning functions tell (swapped_limbs.h): an intrinsic start's result that
-// disagrees less, but not by kIntrinsicMargin, replaces the rigid starts' best if its turning
-// functions agree with the target's at least about as well, within this. Measured at the
-// coarsest level on the 67 h1 and articulated results of docs/eval: the results matched front
-// to back from an intrinsic start agree 0.07–0.25 worse than the rigid starts' right ones
-// (FAUST 003→000 articulated 0.37 against 0.50, 001→002 0.49 against 0.56, at a tie of the
-// disagreement); of the intrinsic results that disagreed less by less than the margin, 16
-// agreed within 0.05, and they were as good or better at that level on 15 (the libigl arm
-// rest→pose3 h1 1.51 against 3.93 %; the arm's articulated match 1.65 against 1.47 %).
-constexpr double kIntrinsicTurning = 0.05;
-// MatchOptions::swap_limbs, at the coarsest level (swapped_limbs.h), measured on the 45 h1
-// results of docs/eval:
-// - how much an exchange of two limbs' places must raise the turning functions' agreement to
-//   be tried, and the match from it to be kept: the three results with a pair of limbs swapped
-//   gained 0.12–0.38 from the best exchange;
-// - how well the map must then agree, as right maps do: 0.46–0.80 for 37 of the 45 (the
-//   makehuman hand's rest → pose 1 0.19), 0.48–0.58 for the three with their limbs exchanged
-//   back; TOSCA michael kneeling to standing with his hands exchanged 0.16, from 0.04 (his
-//   hands rest on his thighs; 4.0 % off, 22 % after);
-// - how much more that match may disagree intrinsically: the signatures cannot tell left from
-//   right, so exchanging two limbs back leaves them about as they were (−23 … +5 % on the
-//   three); a wrong exchange, the elephant's from rest to frame 300 (3.6 % off, 8.8 % after),
-//   +12 %;
-// - how far from the exchanged places that match may put an exchanged extremity (in units of
-//   √area, twice the extremity radius): 0.05–0.14 on the three, 0.77 on that elephant, whose
-//   match went back.
-constexpr double kLimbSwapMargin = 0.05;
-constexpr double kLimbSwapAgreement = 0.4;
-constexpr double kLimbSwapDisagreement = 0.1;
-constexpr double kLimbSwapDrift = 2 * detail::kExtremityRadius;
 
 // A template and a target analysed alike (detail::analyse_intrinsic_shape()).
 using AnalysedShapes = std::pair<detail::IntrinsicShape, detail::IntrinsicShape>;
@@ -282,72 +246,10 @@ Embedding moved_embedding(const Embedding& embedding, const Similarity& similari
     return moved;
 }
 
-// Of flows run side by side, the one whose result `rate` rates lowest, its rating, and the
-// steps of them all. Once cancelled, the first (the one that reported): the others may have
-// stopped anywhere.
-struct KeptFlow {
-    std::size_t index = 0;
-    double rating = 0;
-    int steps = 0;
-};
-template <class Rate>
-KeptFlow keep_lowest(const std::vector<FlowResult>& flows, const std::atomic<bool>& cancelled,
-                     const Rate& rate) {
-    KeptFlow kept;
-    for (std::size_t k = 0; k < flows.size(); ++k) {
-        kept.steps += flows[k].steps;
-        const double value = rate(flows[k]);
-        if (k == 0 || (!cancelled && value < kept.rating)) {
-            kept.rating = value;
-            kept.index = k;
-        }
-    }
-    return kept;
-}
-
-// How far a placement of the coarsest template disagrees with the target intrinsically: the
-// median signature discrepancy, divided by the map's consistency with the eigenbases.
-double disagreement(const detail::SpectralDescriptors& spectral, const Eigen::MatrixX3d& deformed) {
-    return spectral.discrepancy(deformed) / spectral.map_consistency(deformed);
-}
-
-// The flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
-// one whose correspondence agrees best with the target intrinsically first (MatchOptions::align),
-// then those whose disagreement is within `contender_tolerance` of its, at most `contenders`
-// in all, in order (MatchOptions::contenders).
-std::vector<std::size_t> choose_starts(const std::vector<FlowResult>& flows,
-                                       const detail::SpectralDescriptors& spectral,
-                                       double tolerance, double contender_tolerance,
-                                       int contenders) {
-    if (flows.size() < 2) {
-        return {0};
-    }
-    double lowest = std::numeric_limits<double>::infinity();
-    for (const FlowResult& flow : flows) {
-        lowest = std::min(lowest, flow.energy.back());
-    }
-    std::vector<std::pair<double, std::size_t>> shortlist;
-    for (std::size_t k = 0; k < flows.size(); ++k) {
-        if (flows[k].energy.back() <= (1 + tolerance) * lowest) {
-            shortlist.emplace_back(disagreement(spectral, flows[k].mesh.V), k);
-        }
-    }
-    std::sort(shortlist.begin(), shortlist.end());
-    std::vector<std::size_t> chosen;
-    for (const auto& [value, k] : shortlist) {
-        if (static_cast<int>(chosen.size()) == contenders ||
-            value > (1 + contender_tolerance) * shortlist.front().first) {
-            break;
-        }
-        chosen.push_back(k);
-    }
-    return chosen;
-}
-
 }  // namespace
 
 bool MatchResult::doubtful() const {
-    return intrinsic_disagreement && *intrinsic_disagreement > kDoubtfulDisagreement;
+    return intrinsic_disagreement && detail::is_doubtful(*intrinsic_disagreement);
 }
 
 namespace {
@@ -540,8 +442,8 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
             selection_flows[k] = flow_level(count - 1, placed(starts[k]), selection_steps,
                                             starts[k], MatchPrior::H1, {}, 0, k == 0);
         });
-        contenders = choose_starts(selection_flows, *spectral, options.selection_tolerance,
-                                   options.contender_tolerance, options.contenders);
+        contenders = detail::choose_starts(selection_flows, *spectral, options.selection_tolerance,
+                                           options.contender_tolerance, options.contenders);
         chosen = contenders.front();
         best = selection_flows[chosen];
     }
@@ -613,9 +515,9 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
                                 flows[t] = std::move(settled);
                             }
                         });
-                        const KeptFlow kept =
-                            keep_lowest(flows, cancelled, [&](const FlowResult& flow) {
-                                return disagreement(*spectral, flow.mesh.V);
+                        const detail::KeptFlow kept =
+                            detail::keep_lowest(flows, cancelled, [&](const FlowResult& flow) {
+                                return detail::disagreement(*spectral, flow.mesh.V);
                             });
                         GuidedMatch outcome;
                         outcome.flow = std::move(flows[kept.index]);
@@ -662,7 +564,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
                         // signatures alone, which replaces it if it disagrees less. They cannot
                         // tell left from right; the check for swapped limbs that follows can.
                         if (options.signature_fallback && !cancelled &&
-                            outcome.disagreement > kDoubtfulDisagreement) {
+                            detail::needs_signature_fallback(outcome.disagreement)) {
                             GuidedMatch fallback = last_round({{signature_descriptors, 0.0}}, 0);
                             const int steps = outcome.flow.steps + fallback.flow.steps;
                             if (!cancelled && fallback.disagreement < outcome.disagreement) {
@@ -739,17 +641,15 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
             }
             return *turning_agreements[k];
         };
-        // Whether outcome k goes on instead of outcome `than`: it disagrees less; if k is an
-        // intrinsic start's and `than` a rigid start's, clearly less (kIntrinsicMargin), or less
-        // with its turning functions agreeing about as well (kIntrinsicTurning).
+        // Outcome k as the keep-or-reject rules see it (selection.h).
+        const auto score = [&](std::size_t k) {
+            return detail::Score{
+                k < rigid_contenders ? detail::StartKind::Rigid : detail::StartKind::Intrinsic,
+                outcomes[k].disagreement, [&turning, k] { return turning(k); }};
+        };
+        // Whether outcome k goes on instead of outcome `than` (detail::replaces()).
         const auto preferred = [&](std::size_t k, std::size_t than) {
-            const double less = outcomes[k].disagreement;
-            const double more = outcomes[than].disagreement;
-            if (k < rigid_contenders || than >= rigid_contenders) {
-                return less < more;
-            }
-            return less < (1 - kIntrinsicMargin) * more ||
-                   (less < more && turning(k) >= turning(than) - kIntrinsicTurning);
+            return detail::replaces(score(k), score(than));
         };
         std::size_t kept = 0;
         for (std::size_t k = 0; k < outcomes.size(); ++k) {
@@ -760,8 +660,9 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
         // Asked only of results that disagree more than a threshold above 0 (the doubtful ones
         // at kDoubtfulDisagreement), the second opinion comes after the rigid starts' guided
         // rounds, and is kept if it disagrees less (MatchOptions::second_opinion_above).
-        if (!cancelled && options.second_opinion_above > 0 &&
-            outcomes[kept].disagreement > options.second_opinion_above &&
+        if (!cancelled &&
+            detail::needs_second_opinion(outcomes[kept].disagreement,
+                                         options.second_opinion_above) &&
             add_intrinsic_contender()) {
             outcomes.push_back(
                 guided_match(contenders.back(), true, placement_of(rigid_contenders)));
@@ -779,8 +680,8 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
         // alternative_starts_above).
         const double disagreement_kept = outcomes[kept].disagreement;
         if (!cancelled && intrinsic.size() > 1 &&
-            (disagreement_kept > kDoubtfulDisagreement ||
-             (result.second_opinion && disagreement_kept > options.alternative_starts_above))) {
+            detail::needs_alternative_starts(disagreement_kept, result.second_opinion,
+                                             options.alternative_starts_above)) {
             const std::size_t first = outcomes.size();
             for (std::size_t next = 1; next < intrinsic.size(); ++next) {
                 starts.push_back(intrinsic[next].similarity);
@@ -808,8 +709,9 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
             const detail::IntrinsicShape& from = shapes->first;
             const detail::IntrinsicShape& to = shapes->second;
             const TriangleMesh& matched = outcomes[kept].flow.mesh;
-            const detail::SwappedLimbs swapped = detail::find_swapped_limbs(
-                from, to, limbs_placed(*shapes, matched.V), kLimbSwapMargin, kLimbSwapAgreement);
+            const detail::SwappedLimbs swapped =
+                detail::find_swapped_limbs(from, to, limbs_placed(*shapes, matched.V),
+                                           detail::kLimbSwapMargin, detail::kLimbSwapAgreement);
             const std::optional<Eigen::MatrixX3d> exchanged =
                 detail::exchanged_placement(coarsest.template_mesh, from, to, swapped);
             if (exchanged) {
@@ -821,12 +723,12 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
                                                 outcomes[kept].signatures_alone));
                 const detail::LimbPlacement rematched =
                     limbs_placed(*shapes, outcomes.back().flow.mesh.V);
-                if (!cancelled &&
-                    detail::exchange_drift(to, swapped, rematched) <= kLimbSwapDrift &&
-                    rematched.agreement >= kLimbSwapAgreement &&
-                    rematched.agreement > swapped.agreement_before + kLimbSwapMargin &&
-                    outcomes.back().disagreement <=
-                        (1 + kLimbSwapDisagreement) * outcomes[kept].disagreement) {
+                if (!cancelled && detail::keeps_limb_exchange(
+                                      {.agreement_before = swapped.agreement_before,
+                                       .agreement_after = rematched.agreement,
+                                       .disagreement_before = outcomes[kept].disagreement,
+                                       .disagreement_after = outcomes.back().disagreement,
+                                       .drift = detail::exchange_drift(to, swapped, rematched)})) {
                     kept = outcomes.size() - 1;
                     result.swapped_limbs = static_cast<int>(swapped.exchanged.size());
                 }
@@ -876,7 +778,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     };
     tell_stage(count - 1, "coarsest", best.mesh);
     if (spectral) {
-        result.intrinsic_disagreement = disagreement(*spectral, best.mesh.V);
+        result.intrinsic_disagreement = detail::disagreement(*spectral, best.mesh.V);
     }
 
     // Level l's template carried from the deformed level l + 1 (both at rest placed by the
@@ -951,9 +853,10 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
             flows[k].steps += guided_flow.steps;
         });
         const std::vector<Eigen::Index> rows = coarsest_rows(l);
-        const KeptFlow kept = keep_lowest(flows, cancelled, [&](const FlowResult& flow) {
-            return disagreement(*spectral, flow.mesh.V(rows, Eigen::all));
-        });
+        const detail::KeptFlow kept =
+            detail::keep_lowest(flows, cancelled, [&](const FlowResult& flow) {
+                return detail::disagreement(*spectral, flow.mesh.V(rows, Eigen::all));
+            });
         result.refinement_guidance =
             kept.index == 0 ? 0 : factor(kept.index) * options.eigenfunction_guidance;
         // The level reports the plain d_H from `moved` on: where the plain flow started.
@@ -979,7 +882,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
         turned.V = detail::turned_back(rest, flow.mesh.V, parts);
         FlowResult again = flow_level(l, turned, options.refinement_iterations, best_start,
                                       options.prior, {}, options.stretch_weight, false);
-        if (!cancelled && again.energy.back() <= 1.25 * flow.energy.back()) {
+        if (!cancelled && detail::keeps_turned_back(again.energy.back(), flow.energy.back())) {
             again.steps += flow.steps;
             again.energy.front() = flow.energy.front();
             flow = std::move(again);
@@ -1052,7 +955,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // coarsest level's check finds them (swapped_limbs.h) but on this level's shapes: the
     // level drawn towards the landmark map of the exchanged extremities flows again, and is
     // kept if its turning functions agree clearly better and as a right map's do, and its
-    // signatures about as well (kLimbSwapMargin, kLimbSwapAgreement, kLimbSwapDisagreement).
+    // signatures about as well (detail::keeps_limb_exchange()).
     // A limb the coarsest level put on another's place by turning it about its joint keeps
     // the surface's orientation, so that check cannot see it; the fits to the fine map, whose
     // left and right are interchangeable, then reflect it into its place, where this one can
@@ -1069,8 +972,9 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
             return false;
         }
         const auto& [from, to] = *shapes;
-        const detail::SwappedLimbs swapped = detail::find_swapped_limbs(
-            from, to, limbs_placed(*shapes, flow.mesh.V), kLimbSwapMargin, kLimbSwapAgreement);
+        const detail::SwappedLimbs swapped =
+            detail::find_swapped_limbs(from, to, limbs_placed(*shapes, flow.mesh.V),
+                                       detail::kLimbSwapMargin, detail::kLimbSwapAgreement);
         const std::optional<Eigen::MatrixX3d> exchanged =
             detail::exchanged_placement(level.template_mesh, from, to, swapped);
         if (!exchanged) {
@@ -1082,11 +986,13 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
                                       {}, options.stretch_weight, false);
         const detail::LimbPlacement rematched = limbs_placed(*shapes, again.mesh.V);
         const std::vector<Eigen::Index> rows = coarsest_rows(l);
-        if (cancelled || !(rematched.agreement >= kLimbSwapAgreement &&
-                           rematched.agreement > swapped.agreement_before + kLimbSwapMargin &&
-                           disagreement(*spectral, again.mesh.V(rows, Eigen::all)) <=
-                               (1 + kLimbSwapDisagreement) *
-                                   disagreement(*spectral, flow.mesh.V(rows, Eigen::all)))) {
+        if (cancelled ||
+            !detail::keeps_limb_exchange({.agreement_before = swapped.agreement_before,
+                                          .agreement_after = rematched.agreement,
+                                          .disagreement_before = detail::disagreement(
+                                              *spectral, flow.mesh.V(rows, Eigen::all)),
+                                          .disagreement_after = detail::disagreement(
+                                              *spectral, again.mesh.V(rows, Eigen::all))})) {
             return false;
         }
         again.steps += flow.steps;

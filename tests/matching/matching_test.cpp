@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Shape matching: steepest descent with backtracking, rigid alignment, multiresolution,
-// the part model and the quasi-articulated prior, and match() end to end on generated pairs.
+// Shape matching: steepest descent with backtracking, rigid alignment, multiresolution, and
+// match() end to end on generated pairs.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -16,11 +16,9 @@
 #include "genflow/energies/pseudo_hausdorff_energy.h"
 #include "genflow/exceptions.h"
 #include "genflow/flows/gradient_descent.h"
-#include "genflow/matching/articulated_prior.h"
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/match.h"
 #include "genflow/matching/multiresolution.h"
-#include "genflow/matching/part_model.h"
 #include "genflow/mesh/edges.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/mesh/validate.h"
@@ -28,6 +26,7 @@
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mesh_size.h"
+#include "genflow/parts/part_model.h"
 #include "matching/spectral_descriptors.h"
 #include "spatial/point_index.h"
 #include "support/test_meshes.h"
@@ -370,173 +369,6 @@ TEST(Multiresolution, TransferRotatesDetailsWithABend) {
     EXPECT_LT(error, 0.5 * naive_error);
 }
 
-PartModel two_part_arm(const TriangleMesh& mesh) {
-    PartModel model;
-    model.parts = {{"upper", -1, Eigen::Vector3d::Zero()},
-                   {"lower", 0, Eigen::Vector3d(1.0, 0, 0)}};
-    Eigen::VectorXi labels(mesh.V.rows());
-    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
-        labels[i] = mesh.V(i, 0) > 1.0 ? 1 : 0;
-    }
-    model.weights = weights_from_labels(labels, 2);
-    return model;
-}
-
-TEST(PartModel, RejectsModelsThatDoNotFit) {
-    const TriangleMesh mesh = make_limb(2);
-    PartModel model = two_part_arm(mesh);
-    EXPECT_NO_THROW(check_part_model(model, mesh.V.rows()));
-    EXPECT_THROW(check_part_model(model, mesh.V.rows() + 1), InvalidInput);  // wrong count
-    PartModel cycle = model;
-    cycle.parts[0].parent = 1;  // no root, a cycle
-    EXPECT_THROW(check_part_model(cycle, mesh.V.rows()), InvalidInput);
-    PartModel two_roots = model;  // a forest fits (the libigl elephant's legs and spine)
-    two_roots.parts[1].parent = -1;
-    EXPECT_NO_THROW(check_part_model(two_roots, mesh.V.rows()));
-    PartModel bad_sum = model;
-    bad_sum.weights(3, 0) = 0.5;
-    bad_sum.weights(3, 1) = 0.2;
-    EXPECT_THROW(check_part_model(bad_sum, mesh.V.rows()), InvalidInput);
-    EXPECT_THROW((void)weights_from_labels(Eigen::VectorXi::Constant(4, 2), 2), InvalidInput);
-}
-
-// One root moves with the whole template; several hang from it, one level down, each about
-// its own joint.
-TEST(PartModel, DepthsOfATreeAndOfAForest) {
-    const TriangleMesh mesh = make_limb(2);
-    PartModel model = two_part_arm(mesh);
-    EXPECT_EQ(part_depths(model), (std::vector<int>{0, 1}));
-    model.parts.push_back({"hand", 1, Eigen::Vector3d(1.8, 0, 0)});
-    model.weights.conservativeResize(Eigen::NoChange, 3);
-    model.weights.col(2).setZero();
-    EXPECT_EQ(part_depths(model), (std::vector<int>{0, 1, 2}));
-    model.parts[1].parent = -1;
-    EXPECT_EQ(part_depths(model), (std::vector<int>{1, 1, 2}));
-}
-
-// As a tree (upper arm the root, the forearm its child) or as a forest (both roots, each about
-// its own joint), the two-part arm's metric is SPD and bends at the elbow.
-class ArticulatedPriorOfTreeAndForest : public ::testing::TestWithParam<bool> {};
-
-TEST_P(ArticulatedPriorOfTreeAndForest, IsSPDAndBendsAtTheJoint) {
-    const TriangleMesh arm = make_limb(3);
-    PartModel parts = two_part_arm(arm);
-    if (GetParam()) {
-        parts.parts[1].parent = -1;
-    }
-    SubspaceMetric metric = quasi_articulated_metric(arm, parts);
-    metric.update(arm);
-    const VertexField U = test::noisy_icosphere(3, 0.3, 4).V.topRows(arm.V.rows());
-    EXPECT_LT(test::relative_error(metric.gradient(metric.apply(U)), U), 1e-10);
-    EXPECT_GT((U.array() * metric.apply(U).array()).sum(), 0);
-
-    // Bending the lower part about the joint is cheap (its metric norm is a small multiple
-    // of its L2 norm); a bulge of the middle, which no part motion explains, is not.
-    const auto cost = [&](const VertexField& v) {
-        const VertexField Mv = (v.array().colwise() * metric.masses().array()).matrix();
-        return (v.array() * metric.apply(v).array()).sum() / (v.array() * Mv.array()).sum();
-    };
-    VertexField bend(arm.V.rows(), 3);
-    VertexField bulge(arm.V.rows(), 3);
-    for (Eigen::Index i = 0; i < arm.V.rows(); ++i) {
-        const Eigen::Vector3d x = arm.V.row(i).transpose();
-        const double lower = std::clamp((x.x() - 0.8) / 0.4, 0.0, 1.0);
-        bend.row(i) = lower * Eigen::Vector3d::UnitZ().cross(x - Eigen::Vector3d(1, 0, 0));
-        bulge.row(i) = std::cos(x.x()) * Eigen::Vector3d(0, x.y(), x.z());
-    }
-    EXPECT_LT(cost(bend), 0.1);
-    EXPECT_GT(cost(bulge), 0.5);
-}
-
-INSTANTIATE_TEST_SUITE_P(ArticulatedPrior, ArticulatedPriorOfTreeAndForest, ::testing::Bool(),
-                         [](const ::testing::TestParamInfo<bool>& forest) {
-                             return forest.param ? "Forest" : "Tree";
-                         });
-
-// A chain of 17 parts along a sphere (as bench/flow_bench's BM_ArticulatedMetricUpdate): each
-// limb's fields nearly repeat its parent's over the subtree they share, and the blended
-// weights reach everywhere, so the Gram matrix of all 55 fields is far from diagonal. The
-// Gram–Schmidt on it still gives M-orthonormal blocks, to 3e-10 (it runs on the Gram matrix,
-// whose rounding the nearly repeated fields magnify), and gradient() inverts apply().
-TEST(ArticulatedPrior, DeepChainKeepsOrthonormalBlocks) {
-    const TriangleMesh sphere = make_icosphere(3);
-    constexpr int kParts = 17;
-    Eigen::VectorXi labels(sphere.V.rows());
-    PartModel chain;
-    for (int k = 0; k < kParts; ++k) {
-        chain.parts.push_back(
-            {"part" + std::to_string(k), k - 1, Eigen::Vector3d(-1 + 2.0 * k / kParts, 0, 0)});
-    }
-    for (Eigen::Index i = 0; i < sphere.V.rows(); ++i) {
-        labels[i] = std::min(kParts - 1, static_cast<int>((sphere.V(i, 0) + 1) / 2 * kParts));
-    }
-    chain.weights = weights_from_labels(labels, kParts);
-    SubspaceMetric metric = quasi_articulated_metric(sphere, chain);
-    metric.update(sphere);
-    const std::vector<FieldBlock> blocks = metric.orthonormal_blocks();
-    Eigen::Index columns = 0;
-    for (const FieldBlock& block : blocks) {
-        columns += block.fields.cols();
-    }
-    EXPECT_EQ(columns, 7 + 3 * (kParts - 1));  // the rigid motions and three turns per joint
-    Eigen::MatrixXd Q(3 * sphere.V.rows(), columns);
-    Eigen::Index column = 0;
-    for (const FieldBlock& block : blocks) {
-        Q.middleCols(column, block.fields.cols()) = block.fields;
-        column += block.fields.cols();
-    }
-    Eigen::MatrixXd MQ = Q;
-    for (Eigen::Index i = 0; i < sphere.V.rows(); ++i) {
-        MQ.middleRows(3 * i, 3) *= metric.masses()[i];
-    }
-    EXPECT_LT((Q.transpose() * MQ - Eigen::MatrixXd::Identity(columns, columns)).norm(), 1e-9);
-    const VertexField U = test::noisy_icosphere(3, 0.3, 4).V;
-    EXPECT_LT(test::relative_error(metric.gradient(metric.apply(U)), U), 1e-10);
-    EXPECT_LT(test::relative_error(metric.apply(metric.gradient(U)), U), 1e-10);
-}
-
-// With smoothing_length the residual is measured in H1: the part of a rough differential that
-// no part motion explains moves smoothly, and the bend stays cheap.
-TEST(ArticulatedPrior, SmoothsTheResidualOverAnH1Base) {
-    const TriangleMesh arm = make_limb(3);
-    const PartModel parts = two_part_arm(arm);
-    SubspaceMetric plain = quasi_articulated_metric(arm, parts);
-    SubspaceMetric smooth = quasi_articulated_metric(arm, parts, {.smoothing_length = 3});
-    plain.update(arm);
-    smooth.update(arm);
-    const VertexField U = test::noisy_icosphere(3, 0.3, 4).V.topRows(arm.V.rows());
-    EXPECT_LT(test::relative_error(smooth.gradient(smooth.apply(U)), U), 1e-9);
-    EXPECT_GT((U.array() * smooth.apply(U).array()).sum(), 0);
-
-    // A rough differential (noise at every vertex): its gradient's Dirichlet energy per unit
-    // M-norm, with and without the smoothing.
-    const VertexField rough = VertexField::Random(arm.V.rows(), 3);
-    const Eigen::SparseMatrix<double> K = cotan_stiffness(arm);
-    const auto roughness = [&](const VertexField& v) {
-        const VertexField Mv = (v.array().colwise() * plain.masses().array()).matrix();
-        return (v.array() * (K * v).array()).sum() / (v.array() * Mv.array()).sum();
-    };
-    const double plain_roughness = roughness(plain.gradient(rough));
-    const double smooth_roughness = roughness(smooth.gradient(rough));
-    EXPECT_LT(smooth_roughness, 0.1 * plain_roughness)
-        << smooth_roughness << " " << plain_roughness;
-
-    // The bend about the joint still costs a small multiple of its B-norm (measured 0.11: the
-    // test's ramp is not quite the blended weights, and that rest costs in full).
-    VertexField bend(arm.V.rows(), 3);
-    for (Eigen::Index i = 0; i < arm.V.rows(); ++i) {
-        const Eigen::Vector3d x = arm.V.row(i).transpose();
-        const double lower = std::clamp((x.x() - 0.8) / 0.4, 0.0, 1.0);
-        bend.row(i) = lower * Eigen::Vector3d::UnitZ().cross(x - Eigen::Vector3d(1, 0, 0));
-    }
-    H1Metric h1(SobolevOptions{.lambda = std::pow(3 * mean_edge_length(arm), 2)});
-    h1.update(arm);
-    EXPECT_LT((bend.array() * smooth.apply(bend).array()).sum(),
-              0.2 * (bend.array() * h1.apply(bend).array()).sum());
-    EXPECT_THROW((void)quasi_articulated_metric(arm, parts, {.smoothing_length = -1}),
-                 InvalidInput);
-}
-
 TEST(Match, RecoversARigidlyMovedShapeFromAnyPose) {
     const TriangleMesh template_mesh = make_limb(3);
     TriangleMesh target = make_limb(4, 9);
@@ -674,7 +506,7 @@ TEST(Match, ArticulatedPriorFollowsABendTheRigidPriorCannot) {
     const BentLimbPair pair;
     MatchOptions options = one_candidate_options();
     options.prior = MatchPrior::Articulated;
-    options.parts = two_part_arm(pair.template_mesh);
+    options.parts = test::two_part_arm(pair.template_mesh);
     const MatchResult articulated = match(pair.template_mesh, pair.target, options);
     options.prior = MatchPrior::Rigid;
     const MatchResult rigid = match(pair.template_mesh, pair.target, options);
@@ -1095,7 +927,7 @@ TEST(Match, RejectsBadInput) {
     articulated.prior = MatchPrior::Articulated;
     EXPECT_THROW((void)match(mesh, mesh, articulated), InvalidInput);
     MatchOptions wrong_parts = articulated;
-    wrong_parts.parts = two_part_arm(make_limb(3));  // for another vertex count
+    wrong_parts.parts = test::two_part_arm(make_limb(3));  // for another vertex count
     EXPECT_THROW((void)match(mesh, mesh, wrong_parts), InvalidInput);
     MatchOptions no_step;
     no_step.max_step = 0;

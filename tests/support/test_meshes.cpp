@@ -87,6 +87,18 @@ double PosedSpikedFigure::mean_distance(const Eigen::MatrixX3d& placement) const
     return (placement - truth).rowwise().norm().mean() / bounding_box_diagonal(target);
 }
 
+PartModel two_part_arm(const TriangleMesh& mesh) {
+    PartModel model;
+    model.parts = {{"upper", -1, Eigen::Vector3d::Zero()},
+                   {"lower", 0, Eigen::Vector3d(1.0, 0, 0)}};
+    Eigen::VectorXi labels(mesh.V.rows());
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        labels[i] = mesh.V(i, 0) > 1.0 ? 1 : 0;
+    }
+    model.weights = weights_from_labels(labels, 2);
+    return model;
+}
+
 TriangleMesh jittered_grid(int cells, unsigned seed) {
     TriangleMesh mesh = make_grid(cells);
     std::mt19937 generator(seed);

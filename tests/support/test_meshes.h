@@ -10,6 +10,7 @@
 
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh.h"
+#include "genflow/parts/part_model.h"
 
 namespace genflow::test {
 
@@ -41,6 +42,10 @@ struct PosedSpikedFigure {
     /// target's bounding-box diagonal.
     [[nodiscard]] double mean_distance(const Eigen::MatrixX3d& placement) const;
 };
+
+/// The generated limb (make_limb()) as two parts: the upper arm (x ≤ 1) the root, the forearm
+/// its child, jointed at (1, 0, 0).
+PartModel two_part_arm(const TriangleMesh& mesh);
 
 /// A planar grid whose interior vertices are jittered inside the plane z = 0.
 TriangleMesh jittered_grid(int cells, unsigned seed = 3);

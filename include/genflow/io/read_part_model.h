@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "genflow/matching/part_model.h"
+#include "genflow/parts/part_model.h"
 
 namespace genflow {
 

@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "genflow/flows/flow.h"
-#include "genflow/matching/articulated_prior.h"
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh.h"
 #include "genflow/metrics/quasi_isometric_metric.h"
 #include "genflow/metrics/subspace_metric.h"
+#include "genflow/parts/quasi_articulated_metric.h"
 
 namespace genflow {
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
-#include "genflow/matching/part_model.h"
 #include "genflow/mesh.h"
 #include "genflow/metrics/subspace_metric.h"
+#include "genflow/parts/part_model.h"
 
 namespace genflow {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "genflow/matching/part_model.h"
+#include "genflow/parts/part_model.h"
 
 #include <algorithm>
 #include <cmath>

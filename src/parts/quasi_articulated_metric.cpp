@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
-#include "genflow/matching/articulated_prior.h"
+#include "genflow/parts/quasi_articulated_metric.h"
 
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -12,6 +11,7 @@
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mass_matrix.h"
 #include "genflow/operators/mesh_size.h"
+#include "numerics/spd_solver.h"
 #include "operators/triangle.h"
 
 namespace genflow {
@@ -93,10 +93,8 @@ Eigen::MatrixXd blend_part_weights(const TriangleMesh& mesh, const Eigen::Matrix
     for (Eigen::Index i = 0; i < D.size(); ++i) {
         system.coeffRef(i, i) += std::max(D[i], floor);
     }
-    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system);
-    if (solver.info() != Eigen::Success) {
-        throw SolverError("blend_part_weights: cannot factor D + r²K");
-    }
+    detail::SpdSolver solver;
+    solver.compute(system, "blend_part_weights");
     const Eigen::MatrixXd rhs = D.cwiseMax(floor).asDiagonal() * weights;
     Eigen::MatrixXd blended = solver.solve(rhs).cwiseMax(0.0).cwiseMin(1.0);
     for (Eigen::Index i = 0; i < blended.rows(); ++i) {
