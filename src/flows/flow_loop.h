@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: MIT
-// The step loop shared by the integrators: stopping rules, energy log, progress, and turning
-// breakdowns into a status instead of garbage.
+// The one step loop of genflow's flows: the energy log, progress and cancelling, the stopping
+// rules, and breakdowns turned into a status instead of garbage. How far each step goes is the
+// integrator's step-control policy: a fixed time step (explicit_euler(), implicit_euler()) or a
+// line search with Armijo backtracking (gradient_descent()).
 #pragma once
 
 #include <functional>
+#include <limits>
+#include <optional>
+#include <string>
 
 #include "genflow/energies/energy.h"
 #include "genflow/flows/flow.h"
@@ -11,12 +16,49 @@
 
 namespace genflow::detail {
 
-/// Runs `step` (which returns the displacement to add to V, with `metric` already updated to
-/// the current positions) until a stopping rule fires. The first `metric.update()` happens
-/// before the loop, so a mesh the metric refuses is an exception, not a status.
+/// When the loop stops, besides a policy that has no step to take.
+struct StoppingRules {
+    int max_steps = 100;  ///< steps taken at most (MaxSteps)
+    double max_seconds = std::numeric_limits<double>::infinity();  ///< after a step (TimeLimit)
+    /// Converged once E ≤ this, checked before each step.
+    double target_energy = -std::numeric_limits<double>::infinity();
+    /// Converged once |E_k − E_{k−1}| ≤ energy_tolerance·|E_0| (0: never).
+    double energy_tolerance = 0;
+    /// Converged once E fell by no more than stagnation_tolerance·|E| over the last
+    /// stagnation_window steps (window 0: never).
+    double stagnation_tolerance = 0;
+    int stagnation_window = 0;
+};
+
+/// What a step-control policy proposes: the next positions and their energy, or no step and
+/// the status that ends the flow (Converged at a stationary point or where no step descends,
+/// NonFinite for a non-finite gradient) with its message.
+struct ProposedStep {
+    std::optional<TriangleMesh> next = std::nullopt;
+    double value = 0;
+    FlowStatus stop = FlowStatus::Converged;
+    std::string message = {};
+};
+
+/// A step-control policy: from the current mesh (the metric already updated to it) and its
+/// energy, the next step. It may throw SolverError (the flow stops as SolverFailed).
+using StepPolicy = std::function<ProposedStep(const TriangleMesh& current, double value)>;
+
+/// Runs `policy` from `mesh` until a stopping rule fires, calling `progress` after every step.
+/// The first `metric.update()` happens before the loop, so a mesh the metric refuses is an
+/// exception, not a status; an energy that is not finite at the input or after a step ends the
+/// flow as NonFinite. `caller` names the integrator in messages.
 FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, Metric& metric,
-                    const FlowOptions& options,
-                    const std::function<VertexField(const TriangleMesh&)>& step,
-                    const char* caller);
+                    const StoppingRules& rules,
+                    const std::function<bool(const FlowProgress&)>& progress,
+                    const StepPolicy& policy, const char* caller);
+
+/// The fixed-step policy of the Euler integrators: the displacement `displacement` returns for
+/// the current mesh is added whole.
+[[nodiscard]] StepPolicy fixed_step(
+    const Energy& energy, const std::function<VertexField(const TriangleMesh&)>& displacement);
+
+/// The stopping rules of FlowOptions; throws InvalidInput naming `caller` on a bad option.
+[[nodiscard]] StoppingRules stopping_rules(const FlowOptions& options, const char* caller);
 
 }  // namespace genflow::detail

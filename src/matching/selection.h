@@ -108,7 +108,7 @@ struct LimbExchange {
     double agreement_after = 0;
     double disagreement_before = 0;
     double disagreement_after = 0;
-    std::optional<double> drift;
+    std::optional<double> drift = std::nullopt;
 };
 
 /// Whether the match from exchanged limbs is kept: its extremities stayed where they were put
