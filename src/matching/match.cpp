@@ -7,29 +7,22 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <numeric>
 #include <optional>
 #include <utility>
 
-#include "genflow/energies/edge_length_energy.h"
 #include "genflow/energies/pseudo_hausdorff_energy.h"
-#include "genflow/energies/weighted_sum_energy.h"
 #include "genflow/exceptions.h"
-#include "genflow/flows/gradient_descent.h"
 #include "genflow/matching/multiresolution.h"
 #include "genflow/mesh/repair.h"
-#include "genflow/metrics/l2_metric.h"
-#include "genflow/metrics/sobolev_metric.h"
-#include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
-#include "genflow/smoothing/smoothing.h"
 #include "matching/carried_back.h"
 #include "matching/fine_spectrum.h"
 #include "matching/intrinsic_start.h"
+#include "matching/level_flow.h"
 #include "matching/map_fit.h"
+#include "matching/prepare.h"
 #include "matching/selection.h"
 #include "matching/side_by_side.h"
-#include "matching/similarity_scale.h"
 #include "matching/spectral_descriptors.h"
 #include "matching/swapped_limbs.h"
 #include "matching/turned_parts.h"
@@ -139,29 +132,6 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
     }
 }
 
-// `parts`: the level's part model, joint centres at the positions of `template_mesh`;
-// `articulated`: the articulated prior's options at this level.
-std::unique_ptr<Metric> make_metric(const MatchOptions& options, MatchPrior prior,
-                                    const TriangleMesh& template_mesh, const PartModel* parts,
-                                    const QuasiArticulatedOptions& articulated) {
-    switch (prior) {
-        case MatchPrior::L2:
-            return std::make_unique<L2Metric>();
-        case MatchPrior::H1: {
-            const double length = options.h1_length * mean_edge_length(template_mesh);
-            return std::make_unique<H1Metric>(SobolevOptions{.lambda = length * length});
-        }
-        case MatchPrior::Rigid:
-            return std::make_unique<SubspaceMetric>(quasi_rigid_metric(options.rigid));
-        case MatchPrior::Articulated:
-            return std::make_unique<SubspaceMetric>(
-                quasi_articulated_metric(template_mesh, *parts, articulated));
-        case MatchPrior::Isometric:
-            return std::make_unique<QuasiIsometricMetric>(options.isometric);
-    }
-    throw InvalidInput("match: unknown prior");
-}
-
 }  // namespace
 
 namespace {
@@ -182,61 +152,6 @@ detail::LimbPlacement limbs_placed(const AnalysedShapes& shapes, const Eigen::Ma
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-// Template and target at one resolution; `embedding` places this level's template in the
-// next coarser one (empty on the coarsest).
-struct Level {
-    TriangleMesh template_mesh;
-    TriangleMesh target;
-    Embedding embedding;
-    std::vector<Eigen::Index> original_vertex;  // template vertex of each level vertex
-};
-
-// Finest first. The template levels are nested (each coarsened from the previous), so their
-// vertices are subsets of the finer ones; each target level has about as many vertices as
-// the template level when the inputs are alike, and never fewer than half.
-// `coarse_source`: what the coarsest target level is coarsened from (the target, or the
-// target smoothed); the others are coarsened from the target.
-std::vector<Level> build_pyramid(const TriangleMesh& template_mesh, const TriangleMesh& target,
-                                 const TriangleMesh& coarse_source, const MatchOptions& options) {
-    int count = options.levels;
-    if (count <= 0) {
-        count = 1;
-        for (double n = static_cast<double>(template_mesh.V.rows());
-             n > 1.5 * static_cast<double>(options.coarse_vertices); n /= 4) {
-            ++count;
-        }
-    }
-    std::vector<Eigen::Index> identity(static_cast<std::size_t>(template_mesh.V.rows()));
-    std::iota(identity.begin(), identity.end(), 0);
-    std::vector<Level> levels{{template_mesh, target, {}, identity}};
-    for (int l = 1; l < count; ++l) {
-        const Level& finer = levels.back();
-        const Eigen::Index size = std::max<Eigen::Index>(finer.template_mesh.V.rows() / 4, 100);
-        Level coarser;
-        CoarseMesh coarse = coarsen(finer.template_mesh, size);
-        levels.back().embedding = embed(finer.template_mesh, coarse);
-        coarser.template_mesh = std::move(coarse.mesh);
-        for (const Eigen::Index v : coarse.fine_vertex) {
-            coarser.original_vertex.push_back(finer.original_vertex[static_cast<std::size_t>(v)]);
-        }
-        // The target coarsened by the template's factor, but to no fewer than half the
-        // template level's vertices (or all the target has): a target ten times sparser than
-        // the template had a tenth of its vertices on every level (the Sumner horse's coarsest
-        // 108 against 535), too few for its signatures and eigenfunctions (docs/eval/results.md,
-        // "Sparse and noisy targets"). Equal counts on every pair instead changed the near tie of
-        // TOSCA michael 1->2's landmark sets (22.5 % off).
-        const double ratio = static_cast<double>(coarser.template_mesh.V.rows()) /
-                             static_cast<double>(template_mesh.V.rows());
-        const Eigen::Index target_size = std::min(
-            target.V.rows(),
-            std::max({static_cast<Eigen::Index>(ratio * static_cast<double>(target.V.rows())),
-                      coarser.template_mesh.V.rows() / 2, Eigen::Index{100}}));
-        coarser.target = coarsen(l == count - 1 ? coarse_source : target, target_size).mesh;
-        levels.push_back(std::move(coarser));
-    }
-    return levels;
 }
 
 // The embedding of a template level after the similarity: offsets scale and rotate with it.
@@ -261,52 +176,16 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     const double diagonal = bounding_box_diagonal(target);
     MatchResult result;
 
-    std::vector<Similarity> starts{Similarity{}};
-    if (options.align) {
-        RigidAlignmentOptions alignment = options.alignment;
-        alignment.best_starts = std::max(alignment.best_starts, options.alignment_candidates);
-        if (options.alignment_candidates > 1) {
-            alignment.refine_iterations = 0;  // the flows below decide; refining merges starts
-        }
-        starts.clear();
-        for (const RigidAlignment& candidate :
-             rigid_alignment_candidates(template_mesh, target, alignment)) {
-            starts.push_back(candidate.transform);
-            if (static_cast<int>(starts.size()) == options.alignment_candidates) {
-                break;
-            }
-        }
-    }
+    const detail::Prepared prepared = detail::prepare(template_mesh, target, options);
+    std::vector<Similarity> starts = prepared.starts;
+    const std::optional<double>& volume_scale = prepared.volume_scale;
+    result.alignment_seconds = prepared.alignment_seconds;
 
-    // Where the areas mislead (a rough target or template), the intrinsic starts take the
-    // volumes' scale, as the rigid starts do (similarity_scale.h).
-    const double area_scale = std::sqrt(surface_area(target) / surface_area(template_mesh));
-    const std::optional<double> volume_scale =
-        options.align && options.alignment.allow_scaling
-            ? detail::volume_scale_where_areas_mislead(template_mesh, target, area_scale)
-            : std::nullopt;
-    result.alignment_seconds = seconds_since(start);
-
-    auto clock = std::chrono::steady_clock::now();
-    // A target rougher than its shape (more area than its volume gives it) has its coarsest
-    // level made from it smoothed by a step of implicit fairing (Δt = 0.5 h²): QEM keeps much
-    // of a scan's noise, whose signatures and eigenfunctions then tied right and front-to-back
-    // matches (docs/eval/results.md, "Sparse and noisy targets"). The finer levels keep the
-    // target as it is: smoothed, they followed the fairing's shrinkage.
-    std::optional<TriangleMesh> smoothed_target;
-    if (volume_scale && area_scale > *volume_scale) {
-        try {
-            smoothed_target = implicit_fairing(target, {.time_step = 0.5, .steps = 1}).mesh;
-        } catch (const SolverError&) {
-            // The target as it is, then.
-        }
-    }
-    const std::vector<Level> pyramid =
-        build_pyramid(template_mesh, target, smoothed_target ? *smoothed_target : target, options);
+    const std::vector<detail::Level>& pyramid = prepared.pyramid;
     const int count = static_cast<int>(pyramid.size());
-    const double pyramid_seconds = seconds_since(clock);
-
-    const Level& coarsest = pyramid.back();
+    const double pyramid_seconds = prepared.pyramid_seconds;
+    auto clock = std::chrono::steady_clock::now();
+    const detail::Level& coarsest = pyramid.back();
     const bool several_starts = starts.size() > 1;
     // Measured per prior (MatchOptions::signature_guidance): h1, articulated and isometric
     // gain; the quasi-rigid flow pulled a rigidly moved limb 7 % off; L2 stays the unguided
@@ -332,90 +211,21 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
             coarsest.template_mesh.V, coarsest.target.V, options.signature_guidance * diagonal);
     }
 
-    // d_H to a level's target, with ε that many times its mean edge length.
-    const auto distance_to_target = [&](const Level& level, double epsilon_factor,
-                                        const PointDescriptors& descriptors) {
-        return PseudoHausdorffEnergy(level.target,
-                                     {.alpha = options.alpha,
-                                      .epsilon = epsilon_factor * mean_edge_length(level.target),
-                                      .truncation = options.truncation},
-                                     descriptors);
-    };
-
     std::atomic<bool> cancelled = false;
-    // The flow of one level from `moved` (the template level's vertices, already placed).
-    // `placement`: the similarity that took the template level to `moved`'s rest frame.
-    // `descriptors`: the d_H augmented with them (signature_guidance), else the plain one.
-    // `stretch_weight` > 0 adds that times the diagonal times the level's EdgeLengthEnergy.
-    // `reports`: whether it calls options.progress; of flows run side by side, one does (the
-    // others only stop when it was cancelled).
+    const detail::LevelFlows level_flows(pyramid, options, diagonal, cancelled);
+    const auto distance_to_target = [&](const detail::Level& level, double epsilon_factor,
+                                        const PointDescriptors& descriptors) {
+        return level_flows.distance_to_target(level, epsilon_factor, descriptors);
+    };
     const auto flow_level = [&](int l, const TriangleMesh& moved, int iterations,
                                 const Similarity& placement, MatchPrior prior,
                                 const PointDescriptors& descriptors = {}, double stretch_weight = 0,
                                 bool reports = true) {
-        const Level& level = pyramid[static_cast<std::size_t>(l)];
-        std::optional<PartModel> parts;
-        if (options.parts) {  // this level's weights, joints moved with the template
-            parts = restrict_to(*options.parts, level.original_vertex);
-            for (Part& part : parts->parts) {
-                part.joint_centre = placement.apply(part.joint_centre.transpose()).transpose();
-            }
-        }
-        TriangleMesh rest = level.template_mesh;  // where the joint centres are bound
-        rest.V = placement.apply(rest.V);
-        std::shared_ptr<const EdgeLengthEnergy> stretch;
-        if (stretch_weight > 0) {
-            stretch = std::make_shared<EdgeLengthEnergy>(rest);
-        }
-        const auto energy_with_epsilon = [&](double epsilon_factor) {
-            std::vector<WeightedSumEnergy::Term> terms{
-                {1.0, std::make_shared<const PseudoHausdorffEnergy>(
-                          distance_to_target(level, epsilon_factor, descriptors))}};
-            if (stretch) {
-                terms.push_back({stretch_weight * diagonal, stretch});
-            }
-            return WeightedSumEnergy(std::move(terms));
-        };
-        const WeightedSumEnergy energy = energy_with_epsilon(1);
-        QuasiArticulatedOptions articulated = options.articulated;
-        if (l == 0 && count > 1) {  // the finest of several levels
-            articulated.global = options.articulated_finest_global;
-        }
-        const std::unique_ptr<Metric> metric =
-            make_metric(options, prior, rest, parts ? &*parts : nullptr, articulated);
-        DescentOptions descent{.max_displacement = options.max_step * diagonal,
-                               .max_steps = iterations,
-                               .stagnation_tolerance = options.stagnation_tolerance,
-                               .stagnation_window = 20,
-                               .implicit = options.implicit};
-        if (options.progress && reports) {
-            descent.progress = [&, l](const FlowProgress& p) {
-                const bool go_on =
-                    options.progress({l, count, p.step, p.max_steps, p.energy, p.mesh});
-                if (!go_on) {
-                    cancelled = true;
-                }
-                return go_on;
-            };
-        } else if (options.progress) {
-            descent.progress = [&](const FlowProgress&) { return !cancelled; };
-        }
-        if (l == count - 1 && options.coarse_epsilon != 1) {
-            // First half with the smoother d_H of a larger ε, then the level's own ε; the
-            // energies reported are all of the latter.
-            descent.max_steps = iterations / 2;
-            const FlowResult smooth = gradient_descent(
-                moved, energy_with_epsilon(options.coarse_epsilon), *metric, descent);
-            descent.max_steps = iterations - smooth.steps;
-            FlowResult flow = gradient_descent(smooth.mesh, energy, *metric, descent);
-            flow.steps += smooth.steps;
-            flow.energy.insert(flow.energy.begin(), energy.value(moved));
-            return flow;
-        }
-        return gradient_descent(moved, energy, *metric, descent);
+        return level_flows.flow(l, moved, iterations, placement, prior, descriptors, stretch_weight,
+                                reports);
     };
-    const auto report = [](const TriangleMesh& mesh, const Level& level, const FlowResult& flow,
-                           double seconds) {
+    const auto report = [](const TriangleMesh& mesh, const detail::Level& level,
+                           const FlowResult& flow, double seconds) {
         return MatchLevel{mesh.V.rows(),       level.target.V.rows(), flow.steps, flow.status,
                           flow.energy.front(), flow.energy.back(),    seconds};
     };
@@ -784,7 +594,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // Level l's template carried from the deformed level l + 1 (both at rest placed by the
     // chosen start).
     const auto carry_to = [&](int l, const Eigen::MatrixX3d& coarse_deformed) {
-        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const detail::Level& level = pyramid[static_cast<std::size_t>(l)];
         TriangleMesh rest = level.template_mesh;
         rest.V = best_start.apply(rest.V);
         TriangleMesh coarse_rest = pyramid[static_cast<std::size_t>(l + 1)].template_mesh;
@@ -796,7 +606,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // The rows of level l's template that are the coarsest template's vertices (a subset of
     // every level's), in the coarsest level's order: where `spectral` compares placements.
     const auto coarsest_rows = [&](int l) {
-        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const detail::Level& level = pyramid[static_cast<std::size_t>(l)];
         std::vector<Eigen::Index> level_vertex(static_cast<std::size_t>(template_mesh.V.rows()));
         for (std::size_t v = 0; v < level.original_vertex.size(); ++v) {
             level_vertex[static_cast<std::size_t>(level.original_vertex[v])] =
@@ -816,7 +626,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     const auto analysed_level = [&](int l) -> const auto* {
         if (analysed != l) {
             analysed = l;
-            const Level& level = pyramid[static_cast<std::size_t>(l)];
+            const detail::Level& level = pyramid[static_cast<std::size_t>(l)];
             try {
                 level_shapes.emplace(detail::analyse_intrinsic_shape(level.template_mesh),
                                      detail::analyse_intrinsic_shape(level.target));
@@ -832,7 +642,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // implies, side by side; the result whose coarsest vertices disagree least is kept.
     const Eigen::MatrixX3d coarsest_deformed = best.mesh.V;
     const auto refine = [&](int l, const TriangleMesh& moved) {
-        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const detail::Level& level = pyramid[static_cast<std::size_t>(l)];
         const PointDescriptors descriptors = spectral->eigenfunction_descriptors(
             {coarsest_deformed}, level.template_mesh.V, level.target.V,
             options.eigenfunction_guidance * diagonal);
@@ -872,7 +682,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // `rest`: the level's template at rest, placed by the chosen start.
     const auto turn_back = [&](int l, const TriangleMesh& rest, FlowResult& flow,
                                const detail::VertexMap& map) {
-        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const detail::Level& level = pyramid[static_cast<std::size_t>(l)];
         const std::vector<detail::TurnedPart> parts =
             detail::find_turned_parts(rest, flow.mesh.V, level.target, map);
         if (parts.empty()) {
@@ -903,7 +713,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
         if (maps.empty() || maps.front().functions < 1 || options.map_fits < 1) {
             return;
         }
-        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const detail::Level& level = pyramid[static_cast<std::size_t>(l)];
         const double target_edge = mean_edge_length(level.target);
         const std::vector<Eigen::Index> rows = coarsest_rows(l);
         // The turning functions' agreement, 0 (not known) without the level's analyses.
@@ -966,7 +776,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // from where the right result, 1.9 % off, put it). Returns whether it exchanged any; none
     // if an eigen-solve of the analyses fails (as the second opinion, which then is not asked).
     const auto exchange_limbs = [&](int l, FlowResult& flow) {
-        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const detail::Level& level = pyramid[static_cast<std::size_t>(l)];
         const auto* shapes = analysed_level(l);
         if (shapes == nullptr) {
             return false;
@@ -1008,7 +818,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     TriangleMesh current = std::move(best.mesh);
     for (int l = count - 2; l >= 0 && !cancelled; --l) {
         clock = std::chrono::steady_clock::now();
-        const Level& level = pyramid[static_cast<std::size_t>(l)];
+        const detail::Level& level = pyramid[static_cast<std::size_t>(l)];
         const TriangleMesh moved = carry_to(l, current.V);
         tell_stage(l, "carried", moved);
         const bool refined_level = refines && l == count - 2;

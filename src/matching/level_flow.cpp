@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: MIT
+#include "matching/level_flow.h"
+
+#include <memory>
+#include <optional>
+#include <utility>
+
+#include "genflow/energies/edge_length_energy.h"
+#include "genflow/energies/weighted_sum_energy.h"
+#include "genflow/exceptions.h"
+#include "genflow/flows/gradient_descent.h"
+#include "genflow/metrics/l2_metric.h"
+#include "genflow/metrics/sobolev_metric.h"
+#include "genflow/operators/mesh_size.h"
+#include "genflow/parts/quasi_articulated_metric.h"
+
+namespace genflow::detail {
+
+namespace {
+
+// `parts`: the level's part model, joint centres at the positions of `template_mesh`;
+// `articulated`: the articulated prior's options at this level.
+std::unique_ptr<Metric> make_metric(const MatchOptions& options, MatchPrior prior,
+                                    const TriangleMesh& template_mesh, const PartModel* parts,
+                                    const QuasiArticulatedOptions& articulated) {
+    switch (prior) {
+        case MatchPrior::L2:
+            return std::make_unique<L2Metric>();
+        case MatchPrior::H1: {
+            const double length = options.h1_length * mean_edge_length(template_mesh);
+            return std::make_unique<H1Metric>(SobolevOptions{.lambda = length * length});
+        }
+        case MatchPrior::Rigid:
+            return std::make_unique<SubspaceMetric>(quasi_rigid_metric(options.rigid));
+        case MatchPrior::Articulated:
+            return std::make_unique<SubspaceMetric>(
+                quasi_articulated_metric(template_mesh, *parts, articulated));
+        case MatchPrior::Isometric:
+            return std::make_unique<QuasiIsometricMetric>(options.isometric);
+    }
+    throw InvalidInput("match: unknown prior");
+}
+
+}  // namespace
+
+PseudoHausdorffEnergy LevelFlows::distance_to_target(const Level& level, double epsilon_factor,
+                                                     const PointDescriptors& descriptors) const {
+    return PseudoHausdorffEnergy(level.target,
+                                 {.alpha = options_.alpha,
+                                  .epsilon = epsilon_factor * mean_edge_length(level.target),
+                                  .truncation = options_.truncation},
+                                 descriptors);
+}
+
+FlowResult LevelFlows::flow(int l, const TriangleMesh& moved, int iterations,
+                            const Similarity& placement, MatchPrior prior,
+                            const PointDescriptors& descriptors, double stretch_weight,
+                            bool reports) const {
+    const Level& level = pyramid_[static_cast<std::size_t>(l)];
+    std::optional<PartModel> parts;
+    if (options_.parts) {  // this level's weights, joints moved with the template
+        parts = restrict_to(*options_.parts, level.original_vertex);
+        for (Part& part : parts->parts) {
+            part.joint_centre = placement.apply(part.joint_centre.transpose()).transpose();
+        }
+    }
+    TriangleMesh rest = level.template_mesh;  // where the joint centres are bound
+    rest.V = placement.apply(rest.V);
+    std::shared_ptr<const EdgeLengthEnergy> stretch;
+    if (stretch_weight > 0) {
+        stretch = std::make_shared<EdgeLengthEnergy>(rest);
+    }
+    const auto energy_with_epsilon = [&](double epsilon_factor) {
+        std::vector<WeightedSumEnergy::Term> terms{
+            {1.0, std::make_shared<const PseudoHausdorffEnergy>(
+                      distance_to_target(level, epsilon_factor, descriptors))}};
+        if (stretch) {
+            terms.push_back({stretch_weight * diagonal_, stretch});
+        }
+        return WeightedSumEnergy(std::move(terms));
+    };
+    const WeightedSumEnergy energy = energy_with_epsilon(1);
+    QuasiArticulatedOptions articulated = options_.articulated;
+    if (l == 0 && count() > 1) {  // the finest of several levels
+        articulated.global = options_.articulated_finest_global;
+    }
+    const std::unique_ptr<Metric> metric =
+        make_metric(options_, prior, rest, parts ? &*parts : nullptr, articulated);
+    DescentOptions descent{.max_displacement = options_.max_step * diagonal_,
+                           .max_steps = iterations,
+                           .stagnation_tolerance = options_.stagnation_tolerance,
+                           .stagnation_window = 20,
+                           .implicit = options_.implicit};
+    if (options_.progress && reports) {
+        descent.progress = [this, l](const FlowProgress& p) {
+            const bool go_on =
+                options_.progress({l, count(), p.step, p.max_steps, p.energy, p.mesh});
+            if (!go_on) {
+                cancelled_ = true;
+            }
+            return go_on;
+        };
+    } else if (options_.progress) {
+        descent.progress = [this](const FlowProgress&) { return !cancelled_; };
+    }
+    if (l == count() - 1 && options_.coarse_epsilon != 1) {
+        // First half with the smoother d_H of a larger ε, then the level's own ε; the
+        // energies reported are all of the latter.
+        descent.max_steps = iterations / 2;
+        const FlowResult smooth =
+            gradient_descent(moved, energy_with_epsilon(options_.coarse_epsilon), *metric, descent);
+        descent.max_steps = iterations - smooth.steps;
+        FlowResult flow = gradient_descent(smooth.mesh, energy, *metric, descent);
+        flow.steps += smooth.steps;
+        flow.energy.insert(flow.energy.begin(), energy.value(moved));
+        return flow;
+    }
+    return gradient_descent(moved, energy, *metric, descent);
+}
+
+}  // namespace genflow::detail
