@@ -88,10 +88,15 @@ FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, Metric& metr
         }
         if (!step.next) {
             result.status = step.stop;
-            result.message = std::move(step.message);
+            if (!step.message.empty()) {
+                result.message = std::string(caller) + ": " + step.message + " at step " +
+                                 std::to_string(result.steps + 1);
+            }
             break;
         }
-        if (!all_finite(step.next->V) || !std::isfinite(step.value)) {
+        // A policy evaluates the energy only at finite positions (fixed_step() gives NaN
+        // otherwise), so the energy alone tells a breakdown.
+        if (!std::isfinite(step.value)) {
             result.status = FlowStatus::NonFinite;
             result.message = std::string(caller) + ": step " + std::to_string(result.steps + 1) +
                              " produced non-finite positions or energy (time step too large?)";

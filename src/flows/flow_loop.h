@@ -32,7 +32,8 @@ struct StoppingRules {
 
 /// What a step-control policy proposes: the next positions and their energy, or no step and
 /// the status that ends the flow (Converged at a stationary point or where no step descends,
-/// NonFinite for a non-finite gradient) with its message.
+/// NonFinite for a non-finite gradient) with why, if it says: the loop names the integrator
+/// and the step ("<caller>: <message> at step N").
 struct ProposedStep {
     std::optional<TriangleMesh> next = std::nullopt;
     double value = 0;

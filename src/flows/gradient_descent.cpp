@@ -55,9 +55,7 @@ public:
         }
         const double largest = g.rowwise().norm().maxCoeff();
         if (!std::isfinite(slope) || !std::isfinite(largest)) {
-            return {.stop = FlowStatus::NonFinite,
-                    .message = "gradient_descent: non-finite gradient at step " +
-                               std::to_string(steps_ + 1)};
+            return {.stop = FlowStatus::NonFinite, .message = "non-finite gradient"};
         }
         if (!(slope > 0) || !(largest > 0)) {
             return {};  // a stationary point: Converged
@@ -94,7 +92,6 @@ public:
                 trial_value < value) {
                 step_size_ = tau;
                 backtracked_ = halving > 0;
-                ++steps_;
                 return {.next = std::move(trial), .value = trial_value};
             }
         }
@@ -107,7 +104,6 @@ private:
     const DescentOptions& options_;
     double step_size_ = 0;      // τ of the last accepted step; 0 before the first
     bool backtracked_ = false;  // whether that step's first τ was refused
-    int steps_ = 0;
 };
 
 }  // namespace

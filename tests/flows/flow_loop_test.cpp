@@ -77,7 +77,7 @@ TEST(FlowLoop, PolicyStopsAndBreakdownsBecomeStatuses) {
         return ProposedStep{.stop = FlowStatus::NonFinite, .message = "why"};
     });
     EXPECT_EQ(result.status, FlowStatus::NonFinite);
-    EXPECT_EQ(result.message, "why");
+    EXPECT_EQ(result.message, "test: why at step 1");
     EXPECT_EQ(result.steps, 0);
 
     result = loop.run({.max_steps = 5}, scripted({5, NAN}));
