@@ -180,7 +180,7 @@ PairMap map_of(const std::string& method, const Shape& from, const Shape& to,
                 {{"orientation_ratio", map.orientation_ratio}, {"basis_size", map.basis_size}}};
     }
     const MatchResult result = match(from.mesh, to.mesh, options);
-    return {closest_points(result.deformed.V, to.mesh), result.seconds};
+    return {closest_points(result.deformed.V, to.mesh), result.seconds, match_choices(result)};
 }
 
 // Maps one pair and measures it; writes the map of every template vertex to `map_file`

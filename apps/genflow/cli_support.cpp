@@ -74,8 +74,28 @@ void add_second_opinion_option(CLI::App& command, double& threshold) {
         ->capture_default_str();
 }
 
+namespace {
+
 nlohmann::json number_or_null(const std::optional<double>& value) {
     return value ? nlohmann::json(*value) : nlohmann::json();
+}
+
+}  // namespace
+
+nlohmann::json match_choices(const MatchResult& result) {
+    return {{"stretch_weight", result.stretch_weight},
+            {"eigenfunction_guidance", result.eigenfunction_guidance},
+            {"signature_fallback", result.signature_fallback},
+            {"refinement_guidance", result.refinement_guidance},
+            {"turned_parts", result.turned_parts},
+            {"map_fits", result.map_fits},
+            {"intrinsic_disagreement", number_or_null(result.intrinsic_disagreement)},
+            {"doubtful", result.doubtful()},
+            {"second_opinion", result.second_opinion},
+            {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
+            {"alternative_starts", result.alternative_starts},
+            {"alternative_start", result.alternative_start},
+            {"swapped_limbs", result.swapped_limbs}};
 }
 
 }  // namespace genflow::cli

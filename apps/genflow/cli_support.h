@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "genflow/matching/match.h"
 #include "genflow/mesh.h"
 #include "genflow/mesh/validate.h"
 
@@ -52,7 +53,9 @@ void create_output_directory(const std::filesystem::path& directory);
 /// `--second-opinion-above X` (MatchOptions::second_opinion_above), shared by match and eval.
 void add_second_opinion_option(CLI::App& command, double& threshold);
 
-/// A measure a match may not have taken (MatchResult's optionals): the number, else null.
-[[nodiscard]] nlohmann::json number_or_null(const std::optional<double>& value);
+/// What a match chose on its way (the stiffness, guidances, starts, fits and exchanges kept, and
+/// the intrinsic disagreements; null where a measure was not taken), as match, eval and
+/// benchmark report it.
+[[nodiscard]] nlohmann::json match_choices(const MatchResult& result);
 
 }  // namespace genflow::cli

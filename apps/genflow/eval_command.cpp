@@ -173,23 +173,16 @@ void run_eval(const EvalOptions& options) {
             if (!output_dir.empty()) {
                 write_mesh(output_dir / (name + "." + prior_name + ".ply"), result.deformed);
             }
-            nlohmann::json row = {
-                {"pair", name},
-                {"prior", prior_name},
-                {"mean", error.mean},
-                {"median", error.median},
-                {"max", error.max},
-                {"stranded_vertices", error.stranded_count},
-                {"reversed_area", error.reversed_area},
-                {"hausdorff", hausdorff},
-                {"intrinsic_disagreement", number_or_null(result.intrinsic_disagreement)},
-                {"second_opinion", result.second_opinion},
-                {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
-                {"alternative_start", result.alternative_start},
-                {"signature_fallback", result.signature_fallback},
-                {"swapped_limbs", result.swapped_limbs},
-                {"map_fits", result.map_fits},
-                {"seconds", result.seconds}};
+            nlohmann::json row = {{"pair", name},
+                                  {"prior", prior_name},
+                                  {"mean", error.mean},
+                                  {"median", error.median},
+                                  {"max", error.max},
+                                  {"stranded_vertices", error.stranded_count},
+                                  {"reversed_area", error.reversed_area},
+                                  {"hausdorff", hausdorff},
+                                  {"seconds", result.seconds}};
+            row.update(match_choices(result));
             if (options.stages) {
                 row["stages"] = stages;
                 if (!options.json) {  // beside the table, which stays Markdown

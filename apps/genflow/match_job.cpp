@@ -63,19 +63,6 @@ nlohmann::json run_match_job(MatchJob job) {
           {alignment(2, 0), alignment(2, 1), alignment(2, 2), alignment(2, 3)},
           {0, 0, 0, 1}}},
         {"pseudo_hausdorff", result.hausdorff_energy},
-        {"stretch_weight", result.stretch_weight},
-        {"eigenfunction_guidance", result.eigenfunction_guidance},
-        {"signature_fallback", result.signature_fallback},
-        {"refinement_guidance", result.refinement_guidance},
-        {"turned_parts", result.turned_parts},
-        {"map_fits", result.map_fits},
-        {"intrinsic_disagreement", number_or_null(result.intrinsic_disagreement)},
-        {"doubtful", result.doubtful()},
-        {"second_opinion", result.second_opinion},
-        {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
-        {"alternative_starts", result.alternative_starts},
-        {"alternative_start", result.alternative_start},
-        {"swapped_limbs", result.swapped_limbs},
         {"template_repairs", result.template_repairs},
         {"target_repairs", result.target_repairs},
         {"hausdorff", distances.hausdorff},
@@ -84,6 +71,7 @@ nlohmann::json run_match_job(MatchJob job) {
         {"hausdorff_over_diagonal", distances.hausdorff / diagonal},
         {"mean_distance_over_diagonal", distances.mean / diagonal},
     };
+    summary.update(match_choices(result));
     if (job.ground_truth) {
         // Over the ground truth's own diagonal (the target's surface, sampled as the template).
         const CorrespondenceError error = correspondence_error(

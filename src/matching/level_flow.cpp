@@ -118,4 +118,16 @@ FlowResult LevelFlows::flow(int l, const TriangleMesh& moved, int iterations,
     return gradient_descent(moved, energy, *metric, descent);
 }
 
+void LevelFlows::tell(int l, std::string_view stage, const TriangleMesh& mesh) const {
+    if (options_.stages) {
+        const Level& level = pyramid_[static_cast<std::size_t>(l)];
+        options_.stages({l, count(), stage, &mesh, &level.original_vertex});
+    }
+}
+
+MatchLevel level_report(const Level& level, const FlowResult& flow, double seconds) {
+    return MatchLevel{flow.mesh.V.rows(),  level.target.V.rows(), flow.steps, flow.status,
+                      flow.energy.front(), flow.energy.back(),    seconds};
+}
+
 }  // namespace genflow::detail

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <string_view>
 #include <vector>
 
 #include "genflow/energies/pseudo_hausdorff_energy.h"
@@ -13,6 +14,9 @@
 #include "matching/prepare.h"
 
 namespace genflow::detail {
+
+/// What MatchResult reports of a level's flow (`flow`, on `level`, in `seconds`).
+[[nodiscard]] MatchLevel level_report(const Level& level, const FlowResult& flow, double seconds);
 
 class LevelFlows {
 public:
@@ -37,6 +41,9 @@ public:
                                   const Similarity& placement, MatchPrior prior,
                                   const PointDescriptors& descriptors = {},
                                   double stretch_weight = 0, bool reports = true) const;
+
+    /// Tells options.stages (if set) that level `l` reached `stage` with `mesh`.
+    void tell(int l, std::string_view stage, const TriangleMesh& mesh) const;
 
 private:
     [[nodiscard]] int count() const { return static_cast<int>(pyramid_.size()); }

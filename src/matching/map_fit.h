@@ -37,6 +37,9 @@
 
 namespace genflow::detail {
 
+/// The smoothing length of a fit (fitted_to_map()) over the target's bounding-box diagonal.
+inline constexpr double kMapFitLength = 0.01;
+
 /// Where a map tears: the two ends of an edge put more than this times (its length at the
 /// match + the target's mean edge length) apart.
 inline constexpr double kMapTear = 3;

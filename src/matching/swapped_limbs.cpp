@@ -166,4 +166,9 @@ double exchange_drift(const IntrinsicShape& to, const SwappedLimbs& swapped,
     return drift;
 }
 
+LimbPlacement limbs_placed(const AnalysedShapes& shapes, const Eigen::MatrixX3d& deformed) {
+    const auto& [from, to] = shapes;
+    return place_limbs(from, to, deformed(from.coarse.fine_vertex, Eigen::all));
+}
+
 }  // namespace genflow::detail

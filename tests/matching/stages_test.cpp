@@ -1,14 +1,21 @@
 // SPDX-License-Identifier: MIT
-// The matcher's first stages on a generated pair: prepare() (rigid starts, pyramid) and the
-// flow of one level (LevelFlows).
+// The matcher's stages on a generated pair: prepare() (rigid starts, pyramid), the flow of one
+// level (LevelFlows), the guided rounds, the coarsest level and the finer levels.
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <limits>
+#include <utility>
 
 #include "genflow/mesh/primitives.h"
 #include "genflow/operators/mesh_size.h"
+#include "matching/coarsest_level.h"
+#include "matching/finer_levels.h"
+#include "matching/guided_rounds.h"
 #include "matching/level_flow.h"
 #include "matching/prepare.h"
+#include "matching/selection.h"
+#include "matching/spectral_descriptors.h"
 
 namespace genflow::detail {
 namespace {
@@ -82,6 +89,148 @@ TEST(LevelFlows, LowerTheDistanceAndStopWhenCancelled) {
     EXPECT_EQ(stopped.status, FlowStatus::Cancelled);
     EXPECT_EQ(stopped.steps, 3);
     EXPECT_TRUE(cancelled);
+}
+
+// A pair prepared with short flows, for the stages after prepare().
+struct PreparedLimb {
+    MovedLimb pair;
+    MatchOptions options;
+    Prepared prepared;
+    mutable std::atomic<bool> cancelled = false;
+    double diagonal = bounding_box_diagonal(pair.target);
+
+    explicit PreparedLimb(MatchOptions base = {}) : options(std::move(base)) {
+        options.coarse_vertices = 300;
+        options.max_iterations = 60;
+        options.fine_iterations = 5;
+        options.refinement_iterations = 5;
+        options.selection_iterations = 20;
+        options.alignment_candidates = 2;
+        prepared = prepare(pair.template_mesh, pair.target, options);
+    }
+    [[nodiscard]] const Level& coarsest() const { return prepared.pyramid.back(); }
+    [[nodiscard]] SpectralDescriptors analysis() const {
+        return {coarsest().template_mesh, coarsest().target};
+    }
+};
+
+// Guided rounds run where they were measured to pay (h1, articulated, isometric), and the
+// quasi-isometric prior decides in the H1 metric.
+TEST(GuidedRounds, RunForTheBendingPriorsAndDecideInH1) {
+    MatchOptions options;
+    for (const MatchPrior prior : kMatchPriors) {
+        options.prior = prior;
+        const bool bends = prior == MatchPrior::H1 || prior == MatchPrior::Articulated ||
+                           prior == MatchPrior::Isometric;
+        EXPECT_EQ(runs_guided_rounds(options), bends) << to_string(prior);
+        EXPECT_EQ(guided_prior(prior), prior == MatchPrior::Isometric ? MatchPrior::H1 : prior);
+    }
+    options.prior = MatchPrior::H1;
+    options.signature_guidance = 0;
+    EXPECT_FALSE(runs_guided_rounds(options));
+}
+
+// One start's rounds: the plain d_H falls from the start's placement, every round's steps are
+// counted, the kept stiffness is one of the candidates, and the reported disagreement is the
+// result's.
+TEST(GuidedRounds, LowerThePlainDistanceAndReportTheKeptCandidate) {
+    const PreparedLimb limb;
+    const SpectralDescriptors analysis = limb.analysis();
+    const LevelFlows flows(limb.prepared.pyramid, limb.options, limb.diagonal, limb.cancelled);
+    const GuidedRounds rounds(limb.prepared.pyramid, flows, analysis, limb.options, limb.diagonal,
+                              limb.cancelled);
+    const Similarity start = limb.prepared.starts.front();
+    const GuidedMatch outcome = rounds.match({.placement = start}, false);
+    ASSERT_TRUE(outcome.flow.ok()) << outcome.flow.message;
+    TriangleMesh placed = limb.coarsest().template_mesh;
+    placed.V = start.apply(placed.V);
+    const PseudoHausdorffEnergy plain = flows.distance_to_target(limb.coarsest(), 1, {});
+    EXPECT_DOUBLE_EQ(outcome.flow.energy.front(), plain.value(placed));
+    EXPECT_DOUBLE_EQ(outcome.flow.energy.back(), plain.value(outcome.flow.mesh));
+    EXPECT_LT(outcome.flow.energy.back(), outcome.flow.energy.front());
+    // Signature-guided then plain, and per stiffness guided then plain (then settled): at least
+    // one step each.
+    EXPECT_GE(outcome.flow.steps, 2 + 2 * limb.options.stiffness_candidates);
+    const double w = limb.options.stretch_weight;
+    EXPECT_TRUE(outcome.stretch_weight == w || outcome.stretch_weight == 4 * w ||
+                outcome.stretch_weight == 16 * w)
+        << outcome.stretch_weight;
+    EXPECT_EQ(outcome.eigenfunction_guidance, limb.options.eigenfunction_guidance);
+    EXPECT_DOUBLE_EQ(outcome.disagreement, disagreement(analysis, outcome.flow.mesh.V));
+    EXPECT_FALSE(outcome.signatures_alone);
+
+    // A match again from a result with the last round guided by the signatures alone.
+    const GuidedMatch again = rounds.match(
+        {.placement = start, .from = &outcome.flow.mesh, .signatures_alone = true}, false);
+    EXPECT_TRUE(again.signatures_alone);
+    EXPECT_EQ(again.eigenfunction_guidance, 0);
+    EXPECT_DOUBLE_EQ(again.flow.energy.front(), plain.value(outcome.flow.mesh));
+}
+
+// The coarsest level keeps a start that brings the template onto the target; the second
+// opinion is reported exactly when it was asked, and an unguided prior flows from a rigid start.
+TEST(CoarsestLevel, KeepsAStartOnTheTargetAndReportsTheSecondOpinion) {
+    for (const double second_opinion_above : {0.0, std::numeric_limits<double>::infinity()}) {
+        MatchOptions options;
+        options.second_opinion_above = second_opinion_above;
+        options.alternative_starts = 0;
+        PreparedLimb limb(options);
+        const SpectralDescriptors analysis = limb.analysis();
+        const LevelFlows flows(limb.prepared.pyramid, limb.options, limb.diagonal, limb.cancelled);
+        const CoarsestMatch match = match_coarsest_level(
+            limb.prepared, flows, &analysis, limb.options, limb.diagonal, limb.cancelled);
+        ASSERT_TRUE(match.flow.ok()) << match.flow.message;
+        EXPECT_LT(match.flow.energy.back(), match.flow.energy.front());
+        EXPECT_LT(disagreement(analysis, match.flow.mesh.V), kDoubtfulDisagreement);
+        EXPECT_EQ(match.second_opinion_disagreement.has_value(), second_opinion_above == 0);
+        EXPECT_EQ(match.alternative_starts, 0);
+    }
+    MatchOptions options;
+    options.prior = MatchPrior::L2;
+    PreparedLimb limb(options);
+    const SpectralDescriptors analysis = limb.analysis();
+    const LevelFlows flows(limb.prepared.pyramid, limb.options, limb.diagonal, limb.cancelled);
+    const CoarsestMatch match = match_coarsest_level(limb.prepared, flows, &analysis, limb.options,
+                                                     limb.diagonal, limb.cancelled);
+    ASSERT_TRUE(match.flow.ok()) << match.flow.message;
+    bool rigid_start = false;
+    for (const Similarity& start : limb.prepared.starts) {
+        rigid_start = rigid_start || start.matrix() == match.start.matrix();
+    }
+    EXPECT_TRUE(rigid_start);
+    EXPECT_FALSE(match.second_opinion_disagreement.has_value());
+    EXPECT_EQ(match.stretch_weight, 0);
+}
+
+// The finer levels report one level each, end at the template's resolution and closer to the
+// target than the carried coarsest result; cancelled, they still return every vertex.
+TEST(FinerLevels, CarryTheCoarsestResultToTheTemplatesResolution) {
+    PreparedLimb limb;
+    const SpectralDescriptors analysis = limb.analysis();
+    const LevelFlows flows(limb.prepared.pyramid, limb.options, limb.diagonal, limb.cancelled);
+    const CoarsestMatch coarsest = match_coarsest_level(
+        limb.prepared, flows, &analysis, limb.options, limb.diagonal, limb.cancelled);
+    FinerLevels finer(limb.prepared.pyramid, flows, &analysis, limb.options, limb.diagonal,
+                      limb.cancelled, coarsest.start, coarsest.stretch_weight);
+    const FinerMatch finest = finer.match(coarsest.flow.mesh.V);
+    const auto count = limb.prepared.pyramid.size();
+    ASSERT_EQ(finest.levels.size(), count - 1);
+    EXPECT_EQ(finest.levels.back().template_vertices, limb.pair.template_mesh.V.rows());
+    ASSERT_EQ(finest.deformed.rows(), limb.pair.template_mesh.V.rows());
+    for (const MatchLevel& level : finest.levels) {
+        EXPECT_LE(level.energy_end, level.energy_start);
+    }
+
+    MatchOptions stopping = limb.options;
+    stopping.progress = [](const MatchProgress& progress) { return progress.step < 2; };
+    std::atomic<bool> cancelled = false;
+    const LevelFlows stopped_flows(limb.prepared.pyramid, stopping, limb.diagonal, cancelled);
+    FinerLevels stopped(limb.prepared.pyramid, stopped_flows, &analysis, stopping, limb.diagonal,
+                        cancelled, coarsest.start, coarsest.stretch_weight);
+    const FinerMatch partial = stopped.match(coarsest.flow.mesh.V);
+    EXPECT_TRUE(cancelled);
+    EXPECT_LT(partial.levels.size(), count - 1);
+    EXPECT_EQ(partial.deformed.rows(), limb.pair.template_mesh.V.rows());
 }
 
 }  // namespace
