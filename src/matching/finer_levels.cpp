@@ -242,7 +242,7 @@ bool FinerLevels::exchange_limbs(int l, FlowResult& flow) {
     return true;
 }
 
-// After the refined level's flows: turned-over parts turned back and the fits to a fine map
+// After the second coarsest level's flows: turned-over parts turned back and the fits to a fine map
 // (one map serves both), then limbs exchanged back, which are fitted to the fine map again, now
 // from their places.
 void FinerLevels::refine_further(int l, FlowResult& flow) {
@@ -267,19 +267,24 @@ void FinerLevels::refine_further(int l, FlowResult& flow) {
 FinerMatch FinerLevels::match(const Eigen::MatrixX3d& coarsest) {
     coarsest_deformed_ = coarsest;
     const int count = static_cast<int>(pyramid_.size());
-    const bool refines = runs_guided_rounds(options_) && options_.eigenfunction_guidance > 0 &&
-                         options_.refinement_guidances > 0;
+    // The second coarsest level is the first to resolve what the coarsest could not (a hand,
+    // a turned forearm) and still coarse enough for dense functional maps: in guided matches it
+    // is refined and checked, each stage by its own switch.
+    const bool guided = runs_guided_rounds(options_);
+    const bool refines =
+        guided && options_.eigenfunction_guidance > 0 && options_.refinement_guidances > 0;
     Eigen::MatrixX3d current = coarsest;
     for (int l = count - 2; l >= 0 && !cancelled_; --l) {
         const auto clock = std::chrono::steady_clock::now();
         const TriangleMesh moved = carry_to(l, current);
         flows_.tell(l, "carried", moved);
         const bool refined_level = refines && l == count - 2;
+        const bool checked_level = guided && l == count - 2;
         FlowResult flow =
             refined_level ? refine(l, moved)
                           : flows_.flow(l, moved, options_.fine_iterations, start_, options_.prior);
         flows_.tell(l, "flowed", flow.mesh);
-        if (refined_level) {
+        if (checked_level) {
             refine_further(l, flow);
         }
         match_.levels.push_back(level_report(level(l), flow, seconds_since(clock)));

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The matcher's finer levels (paper §6.4): each carries the coarser result to its own
-// resolution and flows it a few steps. The second coarsest is refined first: flows guided by
-// the eigenfunctions beside the plain one, parts a fine functional map places turned over
-// turned back, fits to that map, and limbs put on each other's places exchanged; each is kept
-// only by its rule (selection.h, map_fit.h).
+// resolution and flows it a few steps. In a guided match the second coarsest is refined and
+// checked: flows guided by the eigenfunctions beside the plain one, parts a fine functional map
+// places turned over turned back, fits to that map, and limbs put on each other's places
+// exchanged; each has its own switch and is kept only by its rule (selection.h, map_fit.h).
 #pragma once
 
 #include <atomic>
@@ -34,8 +34,8 @@ class FinerLevels {
 public:
     /// The finer levels of `pyramid`, from the coarsest level's result `coarsest` placed at
     /// rest by `start`, which kept `stretch_weight`. `spectral` analyses the coarsest level; it
-    /// is needed for the refinement (runs_guided_rounds() with eigenfunction guidance), else may
-    /// be null. All are kept by reference. `diagonal`: the target's bounding-box diagonal.
+    /// is needed in guided matches (runs_guided_rounds()), else may be null. All are kept by
+    /// reference. `diagonal`: the target's bounding-box diagonal.
     FinerLevels(const std::vector<Level>& pyramid, const LevelFlows& flows,
                 const SpectralDescriptors* spectral, const MatchOptions& options, double diagonal,
                 const std::atomic<bool>& cancelled, const Similarity& start, double stretch_weight);
