@@ -50,7 +50,7 @@ void create_output_directory(const std::filesystem::path& directory);
 /// inf).
 [[nodiscard]] CLI::Validator non_negative_or_infinity();
 
-/// `--second-opinion-above X` (MatchOptions::second_opinion_above), shared by match and eval.
+/// `--second-opinion-above X` (MatchOptions::second_opinion), shared by match and eval.
 void add_second_opinion_option(CLI::App& command, double& threshold);
 
 /// What a match chose on its way (the stiffness, guidances, starts, fits and exchanges kept, and

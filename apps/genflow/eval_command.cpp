@@ -35,7 +35,7 @@ struct EvalOptions {
     std::vector<std::string> priors{"h1", "rigid", "articulated"};
     std::vector<std::string> only;  // pair names; empty: all
     std::string data_dir;           // paths in the pairs are relative to it (default: the file's)
-    double second_opinion_above = MatchOptions{}.second_opinion_above;
+    double second_opinion_above = MatchOptions{}.second_opinion.above;
     std::string output_dir;  // where the targets matched and the results go; empty: nowhere
     bool stages = false;     // the mean error after each stage of each level too
     bool json = false;
@@ -156,7 +156,7 @@ void run_eval(const EvalOptions& options) {
             MatchOptions match_options;
             match_options.prior = prior;
             match_options.parts = parts;
-            match_options.second_opinion_above = options.second_opinion_above;
+            match_options.second_opinion.above = options.second_opinion_above;
             nlohmann::json stages = nlohmann::json::array();
             if (options.stages) {
                 match_options.stages = [&](const MatchStage& stage) {

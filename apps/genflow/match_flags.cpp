@@ -71,51 +71,51 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
         ->check(CLI::Range(0, 100000))
         ->capture_default_str();
     command
-        .add_option("--candidates", flags.match.alignment_candidates,
+        .add_option("--candidates", flags.match.starts.candidates,
                     "Rigid starts flowed on the coarsest level; of those within 5 % of the "
                     "lowest d_H, the one whose heat kernel signatures agree best goes on")
         ->check(CLI::Range(1, 24))
         ->capture_default_str();
     command
-        .add_option("--contenders", flags.match.contenders,
+        .add_option("--contenders", flags.match.starts.contenders,
                     "Of those, the ones that agree within 25 % of the best go through the "
                     "guided flows each (at most this many); the one that ends agreeing best "
                     "is kept")
         ->check(CLI::Range(1, 24))
         ->capture_default_str();
     command
-        .add_option("--signature-guidance", flags.match.signature_guidance,
+        .add_option("--signature-guidance", flags.match.guided.signature_guidance,
                     "Weight of the heat kernel signatures in the coarsest flow, as a fraction "
                     "of the diagonal (points are near only if close and alike; 0 = off)")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     command
-        .add_option("--eigenfunction-guidance", flags.match.eigenfunction_guidance,
+        .add_option("--eigenfunction-guidance", flags.match.guided.eigenfunction_guidance,
                     "Weight of the Laplacian eigenfunctions, carried over by a functional map, "
                     "in a second guided coarsest flow that tells left from right (0 = off)")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     command
-        .add_option("--guidance-candidates", flags.match.guidance_candidates,
+        .add_option("--guidance-candidates", flags.match.guided.guidance_candidates,
                     "Run that second guided flow at the eigenfunction guidance times 1, 2, 4, "
                     "... and keep the result that agrees best with the target intrinsically")
         ->check(CLI::Range(1, 8))
         ->capture_default_str();
     command
-        .add_option("--stretch-weight", flags.match.stretch_weight,
+        .add_option("--stretch-weight", flags.match.guided.stretch_weight,
                     "Weight of the template's edge stretching (relative to its rest lengths, "
                     "times the diagonal) added to d_H in the last guided coarsest flow; it "
                     "keeps the template from sliding along the target (0 = off)")
         ->check(CLI::Range(0.0, 100.0))
         ->capture_default_str();
     command
-        .add_option("--stiffness-candidates", flags.match.stiffness_candidates,
+        .add_option("--stiffness-candidates", flags.match.guided.stiffness_candidates,
                     "Run that last flow at the stretch weight times 1, 4, 16, ... and keep the "
                     "result that agrees best with the target intrinsically (1 = the weight only)")
         ->check(CLI::Range(1, 8))
         ->capture_default_str();
     command
-        .add_option("--refinement-guidances", flags.match.refinement_guidances,
+        .add_option("--refinement-guidances", flags.match.refinement.guidances,
                     "Refine the second coarsest level with flows guided by the eigenfunctions "
                     "at the eigenfunction guidance times 1, 1/2, ... (this many) and keep, of "
                     "those and the plain flow, the result that agrees best (0 = off)")
@@ -126,9 +126,9 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
                     "Steps of each guided refining flow")
         ->check(CLI::Range(0, 100000))
         ->capture_default_str();
-    add_second_opinion_option(command, flags.match.second_opinion_above);
+    add_second_opinion_option(command, flags.match.second_opinion.above);
     command
-        .add_option("--alternative-starts", flags.match.alternative_starts,
+        .add_option("--alternative-starts", flags.match.second_opinion.alternative_starts,
                     "A result still doubtful after the second opinion, or one the second "
                     "opinion gave, is matched again from the intrinsic starts of up to this "
                     "many further landmark sets, side by side; the one that disagrees least is "
@@ -136,7 +136,8 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
         ->check(CLI::Range(0, 7))
         ->capture_default_str();
     command
-        .add_option("--alternative-starts-above", flags.match.alternative_starts_above,
+        .add_option("--alternative-starts-above",
+                    flags.match.second_opinion.alternative_starts_above,
                     "Only a second opinion's result that disagrees more than this with the "
                     "target is matched again from the alternative starts (a doubtful one always "
                     "is; 0: every one; inf: none)")
@@ -154,7 +155,7 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
                      "places turned over in their own place (a hand palm for back) after the "
                      "refinement");
     command
-        .add_option("--map-fits", flags.match.map_fits,
+        .add_option("--map-fits", flags.match.map_fit.max_fits,
                     "At most this many fits of the refined match to where that map puts it, "
                     "each kept only if the heat kernel signatures then agree better with the "
                     "target, or the turning functions of pairs of extremities clearly better, "
@@ -172,10 +173,11 @@ MatchOptions resolved(const MatchFlags& flags, bool has_parts) {
     const std::string prior =
         !flags.prior.empty() ? flags.prior : (has_parts ? "articulated" : "h1");
     options.prior = *parse_match_prior(prior);
-    options.align = options.align && !flags.no_align;
-    options.turn_back_parts = options.turn_back_parts && !flags.no_turn_back;
-    options.swap_limbs = options.swap_limbs && !flags.no_limb_swaps;
-    options.signature_fallback = options.signature_fallback && !flags.no_signature_fallback;
+    options.starts.enabled = options.starts.enabled && !flags.no_align;
+    options.turn_back.enabled = options.turn_back.enabled && !flags.no_turn_back;
+    options.limb_swaps.enabled = options.limb_swaps.enabled && !flags.no_limb_swaps;
+    options.guided.signature_fallback =
+        options.guided.signature_fallback && !flags.no_signature_fallback;
     return options;
 }
 

@@ -2,6 +2,7 @@
 #include "matching/coarsest_level.h"
 
 #include <algorithm>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -35,9 +36,9 @@ public:
           rigid_contenders_(contenders_.size()) {}
 
     // The contenders side by side, the second opinion among them when every match asks it
-    // (MatchOptions::second_opinion_above = 0: it then costs what one more contender does).
+    // (MatchOptions::second_opinion = 0: it then costs what one more contender does).
     void run_contenders() {
-        if (options_.second_opinion_above == 0) {
+        if (second_opinion_above() == 0) {
             add_intrinsic_contender();
         }
         outcomes_.resize(contenders_.size());
@@ -53,7 +54,7 @@ public:
     // comes after the rigid starts' rounds and is kept if it disagrees less.
     void ask_second_opinion() {
         if (!cancelled_ &&
-            needs_second_opinion(outcomes_[kept_].disagreement, options_.second_opinion_above) &&
+            needs_second_opinion(outcomes_[kept_].disagreement, second_opinion_above()) &&
             add_intrinsic_contender()) {
             outcomes_.push_back(run(contenders_.size() - 1, true));
             if (!cancelled_ && preferred(outcomes_.size() - 1, kept_)) {
@@ -68,11 +69,11 @@ public:
 
     // A doubtful result, or one from the second opinion that disagrees more than right matches
     // do, matched again from the intrinsic starts of the next landmark sets, side by side; the
-    // one that disagrees least is kept (MatchOptions::alternative_starts).
+    // one that disagrees least is kept (MatchOptions::second_opinion.alternative_starts).
     void try_alternative_starts() {
         if (cancelled_ || intrinsic_.size() <= 1 ||
             !needs_alternative_starts(outcomes_[kept_].disagreement, match_.second_opinion,
-                                      options_.alternative_starts_above)) {
+                                      options_.second_opinion.alternative_starts_above)) {
             return;
         }
         const std::size_t first = outcomes_.size();
@@ -92,11 +93,11 @@ public:
         }
     }
 
-    // Limbs the kept result put on each other's places (MatchOptions::swap_limbs): matched
+    // Limbs the kept result put on each other's places (MatchOptions::limb_swaps): matched
     // again from the result drawn towards the map of the exchanged extremities; kept by
     // keeps_limb_exchange().
     void exchange_limbs() {
-        if (cancelled_ || !options_.swap_limbs || !shapes_) {
+        if (cancelled_ || !options_.limb_swaps.enabled || !shapes_) {
             return;
         }
         const auto& [from, to] = *shapes_;
@@ -147,6 +148,12 @@ public:
 private:
     [[nodiscard]] const Level& coarsest() const { return prepared_.pyramid.back(); }
 
+    // MatchOptions::second_opinion's threshold; +inf (never) when it is off.
+    [[nodiscard]] double second_opinion_above() const {
+        return options_.second_opinion.enabled ? options_.second_opinion.above
+                                               : std::numeric_limits<double>::infinity();
+    }
+
     void add_contender(Similarity start) {
         starts_.push_back(start);
         contenders_.push_back(starts_.size() - 1);
@@ -171,9 +178,9 @@ private:
         try {
             shapes_.emplace(analyse_intrinsic_shape(level.template_mesh),
                             analyse_intrinsic_shape(level.target));
-            intrinsic_ =
-                intrinsic_starts(level.template_mesh, shapes_->first, shapes_->second,
-                                 1 + static_cast<std::size_t>(options_.alternative_starts));
+            intrinsic_ = intrinsic_starts(
+                level.template_mesh, shapes_->first, shapes_->second,
+                1 + static_cast<std::size_t>(options_.second_opinion.alternative_starts));
             if (prepared_.volume_scale) {
                 for (IntrinsicStart& start : intrinsic_) {
                     rescale(start, level.template_mesh, *prepared_.volume_scale);
@@ -234,7 +241,7 @@ std::vector<FlowResult> selection_flows(const Prepared& prepared, const LevelFlo
                                         const MatchOptions& options) {
     const std::vector<Similarity>& starts = prepared.starts;
     const int coarsest = static_cast<int>(prepared.pyramid.size()) - 1;
-    const int steps = std::min(options.selection_iterations, options.max_iterations);
+    const int steps = std::min(options.starts.selection_iterations, options.max_iterations);
     std::vector<FlowResult> results(starts.size());
     run_side_by_side(starts.size(), [&](std::size_t k) {
         TriangleMesh placed = prepared.pyramid.back().template_mesh;
@@ -250,7 +257,8 @@ FlowResult unguided_flow(const Prepared& prepared, const LevelFlows& flows,
                          const MatchOptions& options, const Similarity& start,
                          const FlowResult* selection) {
     const int coarsest = static_cast<int>(prepared.pyramid.size()) - 1;
-    const int selection_steps = std::min(options.selection_iterations, options.max_iterations);
+    const int selection_steps =
+        std::min(options.starts.selection_iterations, options.max_iterations);
     if (selection == nullptr || options.prior != MatchPrior::H1) {
         TriangleMesh placed = prepared.pyramid.back().template_mesh;
         placed.V = start.apply(placed.V);
@@ -273,14 +281,14 @@ CoarsestMatch match_coarsest_level(const Prepared& prepared, const LevelFlows& f
                                    const SpectralDescriptors* spectral, const MatchOptions& options,
                                    double diagonal, const std::atomic<bool>& cancelled) {
     // Of the selection flows within selection_tolerance of the lowest d_H, the one whose
-    // signatures agree best goes on (MatchOptions::align), with the contenders that agree
-    // about as well (MatchOptions::contenders).
+    // signatures agree best goes on (MatchOptions::starts), with the contenders that agree
+    // about as well (MatchOptions::starts.contenders).
     std::vector<FlowResult> selection;
     std::vector<std::size_t> contenders{0};
     if (prepared.starts.size() > 1) {
         selection = selection_flows(prepared, flows, options);
-        contenders = choose_starts(selection, *spectral, options.selection_tolerance,
-                                   options.contender_tolerance, options.contenders);
+        contenders = choose_starts(selection, *spectral, options.starts.selection_tolerance,
+                                   options.starts.contender_tolerance, options.starts.contenders);
     }
     const std::size_t chosen = contenders.front();
     if (cancelled && !selection.empty()) {

@@ -86,16 +86,16 @@ const AnalysedShapes* FinerLevels::analysed_level(int l) {
     return level_shapes_ ? &*level_shapes_ : nullptr;
 }
 
-// The level's flows (MatchOptions::refinement_guidances): the plain one, and those first guided
+// The level's flows (MatchOptions::refinement): the plain one, and those first guided
 // by the eigenfunctions carried over by the map the coarsest result implies, side by side; the
 // result whose coarsest vertices disagree least is kept.
 FlowResult FinerLevels::refine(int l, const TriangleMesh& moved) {
     const PointDescriptors descriptors = spectral_->eigenfunction_descriptors(
         {coarsest_deformed_}, level(l).template_mesh.V, level(l).target.V,
-        options_.eigenfunction_guidance * diagonal_);
+        options_.guided.eigenfunction_guidance * diagonal_);
     // Flow k > 0 is guided at eigenfunction_guidance × 2^(1-k): 1, 1/2, ...
     const auto factor = [](std::size_t k) { return std::ldexp(1.0, 1 - static_cast<int>(k)); };
-    std::vector<FlowResult> flows(static_cast<std::size_t>(options_.refinement_guidances) + 1);
+    std::vector<FlowResult> flows(static_cast<std::size_t>(options_.refinement.guidances) + 1);
     run_side_by_side(flows.size(), [&](std::size_t k) {
         if (k == 0) {
             flows[k] = flows_.flow(l, moved, options_.fine_iterations, start_, options_.prior);
@@ -114,7 +114,7 @@ FlowResult FinerLevels::refine(int l, const TriangleMesh& moved) {
         return disagreement(*spectral_, flow.mesh.V(rows, Eigen::all));
     });
     match_.refinement_guidance =
-        kept.index == 0 ? 0 : factor(kept.index) * options_.eigenfunction_guidance;
+        kept.index == 0 ? 0 : factor(kept.index) * options_.guided.eigenfunction_guidance;
     // The level reports the plain d_H from `moved` on: where the plain flow started.
     const double start_distance = flows[0].energy.front();
     FlowResult flow = std::move(flows[kept.index]);
@@ -124,7 +124,7 @@ FlowResult FinerLevels::refine(int l, const TriangleMesh& moved) {
 }
 
 // The parts of the level that a fine functional map places turned over
-// (MatchOptions::turn_back_parts): turned back and flowed again, if d_H stays about as low
+// (MatchOptions::turn_back): turned back and flowed again, if d_H stays about as low
 // (keeps_turned_back()). `rest`: the level's template at rest, placed by the start.
 void FinerLevels::turn_back(int l, const TriangleMesh& rest, FlowResult& flow,
                             const VertexMap& map) {
@@ -136,7 +136,7 @@ void FinerLevels::turn_back(int l, const TriangleMesh& rest, FlowResult& flow,
     TriangleMesh turned = flow.mesh;
     turned.V = turned_back(rest, flow.mesh.V, parts);
     FlowResult again = flows_.flow(l, turned, options_.refinement_iterations, start_,
-                                   options_.prior, {}, options_.stretch_weight, false);
+                                   options_.prior, {}, options_.guided.stretch_weight, false);
     if (!cancelled_ && keeps_turned_back(again.energy.back(), flow.energy.back())) {
         again.steps += flow.steps;
         again.energy.front() = flow.energy.front();
@@ -146,14 +146,14 @@ void FinerLevels::turn_back(int l, const TriangleMesh& rest, FlowResult& flow,
 }
 
 // The level drawn towards where a fine map puts it, where the map does not tear off small
-// pieces, and flowed again (MatchOptions::map_fits); kept by first_kept_fit(). ZoomOut finds a
+// pieces, and flowed again (MatchOptions::map_fit); kept by first_kept_fit(). ZoomOut finds a
 // map from each of the spectrum's first sizes; the fits to them run side by side. Each further
 // fit starts from the maps of the level as last fitted and must do clearly better
 // (kMapFitProgress).
 void FinerLevels::fit_to_map(int l, const FineSpectrum& spectrum, FlowResult& flow,
                              std::vector<VertexMap> maps) {
     // Every map of the spectrum has as many functions as the first.
-    if (maps.empty() || maps.front().functions < 1 || options_.map_fits < 1) {
+    if (maps.empty() || maps.front().functions < 1 || !fits()) {
         return;
     }
     const double target_edge = mean_edge_length(level(l).target);
@@ -165,7 +165,7 @@ void FinerLevels::fit_to_map(int l, const FineSpectrum& spectrum, FlowResult& fl
                          shapes == nullptr ? 0.0 : limbs_placed(*shapes, deformed).agreement};
     };
     FitRating rating = rating_of(flow.mesh.V);
-    for (int fit = 0; fit < options_.map_fits && !cancelled_; ++fit) {
+    for (int fit = 0; fit < options_.map_fit.max_fits && !cancelled_; ++fit) {
         if (fit > 0) {
             maps = spectrum.zoomed_out_maps(flow.mesh.V);
         }
@@ -179,7 +179,7 @@ void FinerLevels::fit_to_map(int l, const FineSpectrum& spectrum, FlowResult& fl
                 trusted_vertices(flow.mesh, placement, target_edge, map.resolved_area());
             drawn.V = fitted_to_map(flow.mesh, placement, kMapFitLength * diagonal_, trusted);
             fitted[k] = flows_.flow(l, drawn, options_.refinement_iterations, start_,
-                                    options_.prior, {}, options_.stretch_weight, false);
+                                    options_.prior, {}, options_.guided.stretch_weight, false);
             ratings[k] = rating_of(fitted[k].mesh.V);
         });
         if (cancelled_) {
@@ -199,7 +199,7 @@ void FinerLevels::fit_to_map(int l, const FineSpectrum& spectrum, FlowResult& fl
     }
 }
 
-// Limbs the level has on each other's places (MatchOptions::swap_limbs), as the coarsest
+// Limbs the level has on each other's places (MatchOptions::limb_swaps), as the coarsest
 // level's check finds them but on this level's shapes: the level drawn towards the landmark map
 // of the exchanged extremities flows again, kept by keeps_limb_exchange(). A limb the coarsest
 // level put on another's place by turning it about its joint keeps the surface's orientation,
@@ -224,7 +224,7 @@ bool FinerLevels::exchange_limbs(int l, FlowResult& flow) {
     TriangleMesh drawn = flow.mesh;
     drawn.V = fitted_to_map(flow.mesh, *exchanged, kMapFitLength * diagonal_);
     FlowResult again = flows_.flow(l, drawn, options_.max_iterations, start_, options_.prior, {},
-                                   options_.stretch_weight, false);
+                                   options_.guided.stretch_weight, false);
     const LimbPlacement rematched = limbs_placed(*shapes, again.mesh.V);
     const std::vector<Eigen::Index> rows = coarsest_rows(l);
     if (cancelled_ ||
@@ -247,19 +247,19 @@ bool FinerLevels::exchange_limbs(int l, FlowResult& flow) {
 // from their places.
 void FinerLevels::refine_further(int l, FlowResult& flow) {
     std::optional<FineSpectrum> spectrum;
-    if ((options_.turn_back_parts || options_.map_fits > 0) && !cancelled_) {
+    if ((options_.turn_back.enabled || fits()) && !cancelled_) {
         TriangleMesh rest = level(l).template_mesh;
         rest.V = start_.apply(rest.V);
         spectrum.emplace(rest, level(l).target);
         std::vector<VertexMap> maps = spectrum->zoomed_out_maps(flow.mesh.V);
-        if (options_.turn_back_parts) {
+        if (options_.turn_back.enabled) {
             turn_back(l, rest, flow, maps.front());
         }
         if (!cancelled_) {
             fit_to_map(l, *spectrum, flow, std::move(maps));
         }
     }
-    if (options_.swap_limbs && !cancelled_ && exchange_limbs(l, flow) && spectrum) {
+    if (options_.limb_swaps.enabled && !cancelled_ && exchange_limbs(l, flow) && spectrum) {
         fit_to_map(l, *spectrum, flow, spectrum->zoomed_out_maps(flow.mesh.V));
     }
 }
@@ -271,8 +271,8 @@ FinerMatch FinerLevels::match(const Eigen::MatrixX3d& coarsest) {
     // a turned forearm) and still coarse enough for dense functional maps: in guided matches it
     // is refined and checked, each stage by its own switch.
     const bool guided = runs_guided_rounds(options_);
-    const bool refines =
-        guided && options_.eigenfunction_guidance > 0 && options_.refinement_guidances > 0;
+    const bool refines = guided && options_.guided.eigenfunction_guidance > 0 &&
+                         options_.refinement.enabled && options_.refinement.guidances > 0;
     Eigen::MatrixX3d current = coarsest;
     for (int l = count - 2; l >= 0 && !cancelled_; --l) {
         const auto clock = std::chrono::steady_clock::now();

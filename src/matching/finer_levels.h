@@ -54,6 +54,9 @@ private:
                     std::vector<VertexMap> maps);
     bool exchange_limbs(int l, FlowResult& flow);
     void refine_further(int l, FlowResult& flow);
+    [[nodiscard]] bool fits() const {
+        return options_.map_fit.enabled && options_.map_fit.max_fits > 0;
+    }
     [[nodiscard]] const Level& level(int l) const { return pyramid_[static_cast<std::size_t>(l)]; }
 
     const std::vector<Level>& pyramid_;

@@ -9,7 +9,7 @@
 namespace genflow::detail {
 
 bool runs_guided_rounds(const MatchOptions& options) {
-    return options.signature_guidance > 0 &&
+    return options.guided.enabled && options.guided.signature_guidance > 0 &&
            (options.prior == MatchPrior::H1 || options.prior == MatchPrior::Articulated ||
             options.prior == MatchPrior::Isometric);
 }
@@ -30,7 +30,7 @@ GuidedRounds::GuidedRounds(const std::vector<Level>& pyramid, const LevelFlows& 
       prior_(guided_prior(options.prior)),
       signatures_(spectral.signature_descriptors(pyramid.back().template_mesh.V,
                                                  pyramid.back().target.V,
-                                                 options.signature_guidance * diagonal)) {}
+                                                 options.guided.signature_guidance * diagonal)) {}
 
 // The guided flow, then the plain one; the result counts the steps of both.
 FlowResult GuidedRounds::guided_then_plain(const TriangleMesh& from, const Similarity& placement,
@@ -47,25 +47,26 @@ FlowResult GuidedRounds::guided_then_plain(const TriangleMesh& from, const Simil
     return plain;
 }
 
-// The last round, at each stiffness of MatchOptions::stiffness_candidates and with each of
+// The last round, at each stiffness of MatchOptions::guided.stiffness_candidates and with each of
 // `guidances` (descriptors and their weight), side by side: the stiffer ones settle at
 // stretch_weight after their plain flow; the result that disagrees least with the target
 // intrinsically is kept.
 GuidedMatch GuidedRounds::last_round(const TriangleMesh& from, const Similarity& placement,
                                      const Guidances& guidances, int first_steps,
                                      bool reports) const {
-    const auto stiffnesses =
-        static_cast<std::size_t>(options_.stretch_weight > 0 ? options_.stiffness_candidates : 1);
+    const auto stiffnesses = static_cast<std::size_t>(
+        options_.guided.stretch_weight > 0 ? options_.guided.stiffness_candidates : 1);
     std::vector<FlowResult> flows(stiffnesses * guidances.size());
     const auto weight = [&](std::size_t t) {
-        return options_.stretch_weight * std::pow(4.0, static_cast<double>(t % stiffnesses));
+        return options_.guided.stretch_weight * std::pow(4.0, static_cast<double>(t % stiffnesses));
     };
     run_side_by_side(flows.size(), [&](std::size_t t) {
         flows[t] = guided_then_plain(from, placement, guidances[t / stiffnesses].first, weight(t),
                                      reports && t == 0);
         if (t % stiffnesses > 0 && !cancelled_) {
-            FlowResult settled = flows_.flow(coarsest(), flows[t].mesh, options_.max_iterations,
-                                             placement, prior_, {}, options_.stretch_weight, false);
+            FlowResult settled =
+                flows_.flow(coarsest(), flows[t].mesh, options_.max_iterations, placement, prior_,
+                            {}, options_.guided.stretch_weight, false);
             settled.steps += flows[t].steps;
             flows[t] = std::move(settled);
         }
@@ -83,9 +84,9 @@ GuidedMatch GuidedRounds::last_round(const TriangleMesh& from, const Similarity&
 }
 
 // The first round guided by the signatures; the last by the eigenfunctions carried over by the
-// functional map it implies (MatchOptions::eigenfunction_guidance). The stretching energy joins
-// the last round only: the first serves to estimate the map, which it made worse
-// (MatchOptions::stretch_weight).
+// functional map it implies (MatchOptions::guided.eigenfunction_guidance). The stretching energy
+// joins the last round only: the first serves to estimate the map, which it made worse
+// (MatchOptions::guided.stretch_weight).
 GuidedMatch GuidedRounds::eigenfunction_rounds(const GuidedStart& start, const TriangleMesh& from,
                                                bool reports) const {
     const FlowResult first = guided_then_plain(from, start.placement, signatures_, 0, reports);
@@ -105,13 +106,13 @@ GuidedMatch GuidedRounds::eigenfunction_rounds(const GuidedStart& start, const T
     const Level& level = pyramid_.back();
     const PointDescriptors descriptors =
         spectral_.eigenfunction_descriptors(placements, level.template_mesh.V, level.target.V,
-                                            options_.eigenfunction_guidance * diagonal_);
+                                            options_.guided.eigenfunction_guidance * diagonal_);
     Guidances guidances;
-    for (int j = 0; j < options_.guidance_candidates; ++j) {
+    for (int j = 0; j < options_.guided.guidance_candidates; ++j) {
         const double factor = 1 << j;
         guidances.emplace_back(
             PointDescriptors{factor * descriptors.moving, factor * descriptors.fixed},
-            factor * options_.eigenfunction_guidance);
+            factor * options_.guided.eigenfunction_guidance);
     }
     GuidedMatch outcome = last_round(from, start.placement, guidances, first.steps, reports);
     // The eigenfunctions are only as right as the map that carried them: one fitted to a poor
@@ -119,7 +120,7 @@ GuidedMatch GuidedRounds::eigenfunction_rounds(const GuidedStart& start, const T
     // lengths do not mind). A doubtful round runs again guided by the signatures alone, which
     // replaces it if it disagrees less. They cannot tell left from right; the check for swapped
     // limbs that follows can.
-    if (options_.signature_fallback && !cancelled_ &&
+    if (options_.guided.signature_fallback && !cancelled_ &&
         needs_signature_fallback(outcome.disagreement)) {
         GuidedMatch fallback = last_round(from, start.placement, {{signatures_, 0.0}}, 0, reports);
         const int steps = outcome.flow.steps + fallback.flow.steps;
@@ -141,7 +142,7 @@ GuidedMatch GuidedRounds::match(const GuidedStart& start, bool reports) const {
         from.V = start.placement.apply(from.V);
     }
     GuidedMatch outcome;
-    if (!start.signatures_alone && options_.eigenfunction_guidance > 0) {
+    if (!start.signatures_alone && options_.guided.eigenfunction_guidance > 0) {
         outcome = eigenfunction_rounds(start, from, reports);
     } else {
         outcome = last_round(from, start.placement, {{signatures_, 0.0}}, 0, reports);

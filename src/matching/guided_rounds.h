@@ -19,9 +19,9 @@
 
 namespace genflow::detail {
 
-/// Whether the coarsest level runs guided rounds (MatchOptions::signature_guidance): measured
-/// per prior, h1, articulated and isometric gain; the quasi-rigid flow pulled a rigidly moved
-/// limb 7 % off; L2 stays the unguided baseline.
+/// Whether the coarsest level runs guided rounds (MatchOptions::guided.signature_guidance):
+/// measured per prior, h1, articulated and isometric gain; the quasi-rigid flow pulled a rigidly
+/// moved limb 7 % off; L2 stays the unguided baseline.
 [[nodiscard]] bool runs_guided_rounds(const MatchOptions& options);
 
 /// The metric the guided rounds flow in. The quasi-isometric prior's rounds end too far from

@@ -58,20 +58,13 @@ std::optional<MatchPrior> parse_match_prior(const std::string& name) {
 
 MatchOptions paper_match_options() {
     MatchOptions options;
-    options.align = false;
-    options.alignment_candidates = 1;
-    options.signature_guidance = 0;
-    options.eigenfunction_guidance = 0;
-    options.stretch_weight = 0;
-    options.stiffness_candidates = 1;
-    options.guidance_candidates = 1;
-    options.signature_fallback = false;
-    options.refinement_guidances = 0;
-    options.turn_back_parts = false;
-    options.map_fits = 0;
-    options.second_opinion_above = std::numeric_limits<double>::infinity();
-    options.alternative_starts = 0;
-    options.swap_limbs = false;
+    options.starts.enabled = false;
+    options.guided.enabled = false;
+    options.second_opinion.enabled = false;
+    options.limb_swaps.enabled = false;
+    options.refinement.enabled = false;
+    options.turn_back.enabled = false;
+    options.map_fit.enabled = false;
     return options;
 }
 
@@ -90,31 +83,37 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
     }
     if (options.max_iterations < 0 || !detail::finite_above(options.max_step, 0) ||
         !detail::finite_at_least(options.stagnation_tolerance, 0) ||
-        options.alignment_candidates < 1 || !detail::finite_above(options.h1_length, 0) ||
+        options.starts.candidates < 1 || !detail::finite_above(options.h1_length, 0) ||
         options.fine_iterations < 0 || options.levels < 0 || options.coarse_vertices < 100 ||
-        options.selection_iterations < 0 || !detail::finite_at_least(options.coarse_epsilon, 1) ||
-        !detail::finite_at_least(options.selection_tolerance, 0) ||
-        !detail::finite_at_least(options.signature_guidance, 0) ||
-        !detail::finite_at_least(options.eigenfunction_guidance, 0) ||
-        !detail::finite_at_least(options.stretch_weight, 0) || options.stiffness_candidates < 1 ||
-        options.contenders < 1 || !detail::finite_at_least(options.contender_tolerance, 0) ||
-        options.guidance_candidates < 1 || options.guidance_candidates > 8 ||
-        options.refinement_guidances < 0 || options.refinement_guidances > 8 ||
-        options.refinement_iterations < 0 || options.map_fits < 0 ||
-        options.alternative_starts < 0 || std::isnan(options.second_opinion_above) ||
-        options.second_opinion_above < 0 || std::isnan(options.alternative_starts_above) ||
-        options.alternative_starts_above < 0 ||
+        options.starts.selection_iterations < 0 ||
+        !detail::finite_at_least(options.coarse_epsilon, 1) ||
+        !detail::finite_at_least(options.starts.selection_tolerance, 0) ||
+        !detail::finite_at_least(options.guided.signature_guidance, 0) ||
+        !detail::finite_at_least(options.guided.eigenfunction_guidance, 0) ||
+        !detail::finite_at_least(options.guided.stretch_weight, 0) ||
+        options.guided.stiffness_candidates < 1 || options.starts.contenders < 1 ||
+        !detail::finite_at_least(options.starts.contender_tolerance, 0) ||
+        options.guided.guidance_candidates < 1 || options.guided.guidance_candidates > 8 ||
+        options.refinement.guidances < 0 || options.refinement.guidances > 8 ||
+        options.refinement_iterations < 0 || options.map_fit.max_fits < 0 ||
+        options.second_opinion.alternative_starts < 0 || std::isnan(options.second_opinion.above) ||
+        options.second_opinion.above < 0 ||
+        std::isnan(options.second_opinion.alternative_starts_above) ||
+        options.second_opinion.alternative_starts_above < 0 ||
         !detail::finite_above(options.articulated_finest_global, 0) ||
         options.articulated_finest_global > 1) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
-            "stagnation_tolerance >= 0, alignment_candidates >= 1, h1_length > 0, levels >= 0, "
-            "coarse_vertices >= 100, coarse_epsilon >= 1, selection_tolerance >= 0, "
-            "signature_guidance >= 0, eigenfunction_guidance >= 0, stretch_weight >= 0, "
-            "stiffness_candidates >= 1, contenders >= 1, contender_tolerance >= 0, "
-            "guidance_candidates in [1, 8], refinement_guidances in [0, 8], "
-            "refinement_iterations >= 0, map_fits >= 0, alternative_starts >= 0, "
-            "second_opinion_above >= 0, alternative_starts_above >= 0 and "
+            "stagnation_tolerance >= 0, h1_length > 0, levels >= 0, coarse_vertices >= 100, "
+            "coarse_epsilon >= 1, refinement_iterations >= 0, starts.candidates >= 1, "
+            "starts.selection_iterations >= 0, starts.selection_tolerance >= 0, "
+            "starts.contenders >= 1, starts.contender_tolerance >= 0, "
+            "guided.signature_guidance >= 0, guided.eigenfunction_guidance >= 0, "
+            "guided.stretch_weight >= 0, guided.stiffness_candidates >= 1, "
+            "guided.guidance_candidates in [1, 8], refinement.guidances in [0, 8], "
+            "map_fit.max_fits >= 0, second_opinion.above >= 0, "
+            "second_opinion.alternative_starts >= 0, second_opinion.alternative_starts_above >= 0 "
+            "and "
             "articulated_finest_global in (0, 1]");
     }
     if (options.prior == MatchPrior::Articulated) {

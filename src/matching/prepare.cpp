@@ -19,22 +19,22 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// The rigid starts, best first: the MatchOptions::alignment_candidates best distinct rigid
+// The rigid starts, best first: the MatchOptions::starts.candidates best distinct rigid
 // fits, or the identity alone without alignment.
 std::vector<Similarity> rigid_starts(const TriangleMesh& template_mesh, const TriangleMesh& target,
                                      const MatchOptions& options) {
     std::vector<Similarity> starts{Similarity{}};
-    if (options.align) {
-        RigidAlignmentOptions alignment = options.alignment;
-        alignment.best_starts = std::max(alignment.best_starts, options.alignment_candidates);
-        if (options.alignment_candidates > 1) {
+    if (options.starts.enabled) {
+        RigidAlignmentOptions alignment = options.starts.alignment;
+        alignment.best_starts = std::max(alignment.best_starts, options.starts.candidates);
+        if (options.starts.candidates > 1) {
             alignment.refine_iterations = 0;  // the flows below decide; refining merges starts
         }
         starts.clear();
         for (const RigidAlignment& candidate :
              rigid_alignment_candidates(template_mesh, target, alignment)) {
             starts.push_back(candidate.transform);
-            if (static_cast<int>(starts.size()) == options.alignment_candidates) {
+            if (static_cast<int>(starts.size()) == options.starts.candidates) {
                 break;
             }
         }
@@ -98,7 +98,7 @@ Prepared prepare(const TriangleMesh& template_mesh, const TriangleMesh& target,
     // Where the areas mislead (a rough target or template), the intrinsic starts take the
     // volumes' scale, as the rigid starts do (similarity_scale.h).
     const double area_scale = std::sqrt(surface_area(target) / surface_area(template_mesh));
-    if (options.align && options.alignment.allow_scaling) {
+    if (options.starts.enabled && options.starts.alignment.allow_scaling) {
         prepared.volume_scale = volume_scale_where_areas_mislead(template_mesh, target, area_scale);
     }
     prepared.alignment_seconds = seconds_since(start);

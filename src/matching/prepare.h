@@ -24,7 +24,7 @@ struct Level {
 
 /// What the flows start from.
 struct Prepared {
-    /// The rigid starts, best first (MatchOptions::align, alignment_candidates); the identity
+    /// The rigid starts, best first (MatchOptions::starts, alignment_candidates); the identity
     /// alone without alignment.
     std::vector<Similarity> starts;
     /// The scale the intrinsic starts take where the areas mislead (a rough target or

@@ -29,8 +29,8 @@ namespace genflow::detail {
 
 /// The flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
 /// one that disagrees least first, then those whose disagreement is within
-/// `contender_tolerance` of its, at most `contenders` in all, in order (MatchOptions::align,
-/// MatchOptions::contenders).
+/// `contender_tolerance` of its, at most `contenders` in all, in order (MatchOptions::starts,
+/// MatchOptions::starts.contenders).
 [[nodiscard]] std::vector<std::size_t> choose_starts(const std::vector<FlowResult>& flows,
                                                      const SpectralDescriptors& spectral,
                                                      double tolerance, double contender_tolerance,
@@ -61,7 +61,7 @@ struct Score {
 };
 
 /// How much less an intrinsic start's result must disagree than a rigid start's to replace it
-/// outright (MatchOptions::second_opinion_above).
+/// outright (MatchOptions::second_opinion).
 inline constexpr double kIntrinsicMargin = 0.25;
 /// Near a tie, an intrinsic start's result that disagrees less replaces a rigid start's if its
 /// turning functions agree at least about as well, within this.
@@ -74,21 +74,21 @@ inline constexpr double kIntrinsicTurning = 0.05;
 [[nodiscard]] bool replaces(const Score& challenger, const Score& kept);
 
 /// Whether a result is matched again guided by the signatures alone
-/// (MatchOptions::signature_fallback): it is doubtful.
+/// (MatchOptions::guided.signature_fallback): it is doubtful.
 [[nodiscard]] bool needs_signature_fallback(double disagreement);
 
 /// Whether a result asks for the intrinsic start's second opinion after the rigid starts'
-/// rounds (MatchOptions::second_opinion_above > 0): it disagrees more than that.
+/// rounds (MatchOptions::second_opinion > 0): it disagrees more than that.
 [[nodiscard]] bool needs_second_opinion(double disagreement, double second_opinion_above);
 
 /// Whether a result is matched again from the next landmark sets' intrinsic starts
-/// (MatchOptions::alternative_starts): it is doubtful, or came from the second opinion and
-/// disagrees more than `alternative_starts_above`.
+/// (MatchOptions::second_opinion.alternative_starts): it is doubtful, or came from the second
+/// opinion and disagrees more than `alternative_starts_above`.
 [[nodiscard]] bool needs_alternative_starts(double disagreement, bool from_second_opinion,
                                             double alternative_starts_above);
 
 /// How much an exchange of two limbs' places must raise the turning functions' agreement to
-/// be tried, and the match from it to be kept (MatchOptions::swap_limbs).
+/// be tried, and the match from it to be kept (MatchOptions::limb_swaps).
 inline constexpr double kLimbSwapMargin = 0.05;
 /// How well the turning functions must then agree, as right maps do.
 inline constexpr double kLimbSwapAgreement = 0.4;
@@ -117,7 +117,7 @@ struct LimbExchange {
 [[nodiscard]] bool keeps_limb_exchange(const LimbExchange& exchange);
 
 /// How much higher d_H may end after parts were turned back and flowed again
-/// (MatchOptions::turn_back_parts): "about as low", a quarter's allowance.
+/// (MatchOptions::turn_back): "about as low", a quarter's allowance.
 inline constexpr double kTurnBackAllowance = 1.25;
 
 /// Whether the level with its turned-over parts turned back is kept.

@@ -81,10 +81,10 @@ Eigen::MatrixX3d mirrored_beyond(const BentLimbPair& pair, double above,
 // the second opinion Match.SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss).
 MatchOptions one_candidate_options() {
     MatchOptions options;
-    options.align = false;
-    options.stiffness_candidates = 1;
-    options.guidance_candidates = 1;
-    options.second_opinion_above = std::numeric_limits<double>::infinity();
+    options.starts.enabled = false;
+    options.guided.stiffness_candidates = 1;
+    options.guided.guidance_candidates = 1;
+    options.second_opinion.above = std::numeric_limits<double>::infinity();
     return options;
 }
 
@@ -424,6 +424,45 @@ TEST(Match, PaperPresetFlowsOverTheLevelsAlone) {
     EXPECT_LT(pair.error(result), 0.04);
 }
 
+// Each stage's `enabled` switch turns it off alone: without guided rounds nothing is guided or
+// stretched; without the second opinion none is given; without fits, turn-back and limb
+// exchange none is counted; and the paper preset's result is the one with every switch off.
+TEST(Match, EachStageHasItsOwnSwitch) {
+    const BentLimbPair pair;
+    MatchOptions options;
+    options.levels = 2;
+    options.guided.enabled = false;
+    const MatchResult unguided = match(pair.template_mesh, pair.target, options);
+    EXPECT_EQ(unguided.stretch_weight, 0);
+    EXPECT_EQ(unguided.eigenfunction_guidance, 0);
+    EXPECT_EQ(unguided.refinement_guidance, 0);
+    EXPECT_FALSE(unguided.second_opinion_disagreement.has_value());
+
+    options = MatchOptions{};
+    options.levels = 2;
+    options.second_opinion.enabled = false;
+    options.map_fit.enabled = false;
+    options.turn_back.enabled = false;
+    options.limb_swaps.enabled = false;
+    const MatchResult guided = match(pair.template_mesh, pair.target, options);
+    EXPECT_GT(guided.stretch_weight, 0);
+    EXPECT_FALSE(guided.second_opinion_disagreement.has_value());
+    EXPECT_EQ(guided.map_fits + guided.turned_parts + guided.swapped_limbs, 0);
+
+    MatchOptions off = paper_match_options();
+    off.levels = 2;
+    MatchOptions switched;
+    switched.levels = 2;
+    for (bool* enabled :
+         {&switched.starts.enabled, &switched.guided.enabled, &switched.second_opinion.enabled,
+          &switched.limb_swaps.enabled, &switched.refinement.enabled, &switched.turn_back.enabled,
+          &switched.map_fit.enabled}) {
+        *enabled = false;
+    }
+    EXPECT_EQ(match(pair.template_mesh, pair.target, off).deformed.V,
+              match(pair.template_mesh, pair.target, switched).deformed.V);
+}
+
 // A template as meshes come (a reversed duplicate face, a fin on an edge, a seam of coincident
 // vertices) is matched as its repaired surface, which here is the clean template: the same
 // result for its vertices, and the extra vertices carried along with their neighbours.
@@ -538,12 +577,12 @@ TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
     const TriangleMesh& template_mesh = pair.template_mesh;
     const auto strain = [&](const MatchResult& r) { return mean_edge_strain(template_mesh, r); };
     MatchOptions options;
-    options.align = false;
+    options.starts.enabled = false;
     options.prior = MatchPrior::Isometric;
     options.isometric.refresh_interval = 1;  // the prior itself, not its faster lagged form
     const MatchResult isometric = match(template_mesh, pair.target, options);
     MatchOptions unguided_options = options;
-    unguided_options.signature_guidance = 0;
+    unguided_options.guided.signature_guidance = 0;
     const MatchResult unguided = match(template_mesh, pair.target, unguided_options);
     options.prior = MatchPrior::L2;
     const MatchResult l2 = match(template_mesh, pair.target, options);
@@ -576,8 +615,8 @@ TEST(Match, EpsilonScheduleEndsOnTheTargetAndReportsTheLevelsOwnDistance) {
     // Each of the guided level's flows splits its max_iterations between the two ε: signatures
     // and plain, then per stiffness candidate eigenfunctions and plain, and for the stiffer ones
     // the flow that settles them.
-    const int flows =
-        2 + options.guidance_candidates * (2 + 3 * (options.stiffness_candidates - 1));
+    const int flows = 2 + options.guided.guidance_candidates *
+                              (2 + 3 * (options.guided.stiffness_candidates - 1));
     EXPECT_LE(scheduled.levels[0].iterations, flows * options.max_iterations);
     EXPECT_LT(scheduled.hausdorff_energy, 1.5 * plain.hausdorff_energy)
         << scheduled.hausdorff_energy << " " << plain.hausdorff_energy;
@@ -759,12 +798,12 @@ TEST(SpectralDescriptors, DoNotDependOnTheSizesOfTheShapes) {
 TEST(Match, GuidanceReportsThePlainDistanceAndMatchesTheLimb) {
     const BentLimbPair pair;
     MatchOptions options = one_candidate_options();
-    options.signature_guidance = 0;
+    options.guided.signature_guidance = 0;
     const MatchResult plain = match(pair.template_mesh, pair.target, options);
-    options.signature_guidance = 0.1;
-    options.eigenfunction_guidance = 0;
+    options.guided.signature_guidance = 0.1;
+    options.guided.eigenfunction_guidance = 0;
     const MatchResult signatures = match(pair.template_mesh, pair.target, options);
-    options.eigenfunction_guidance = 0.1;
+    options.guided.eigenfunction_guidance = 0.1;
     const MatchResult both = match(pair.template_mesh, pair.target, options);
     for (const MatchResult* guided : {&signatures, &both}) {
         ASSERT_EQ(guided->levels.size(), plain.levels.size());
@@ -796,9 +835,9 @@ TEST(Match, GuidanceReportsThePlainDistanceAndMatchesTheLimb) {
 TEST(Match, StretchingEnergyKeepsEdgeLengthsAndTheMatch) {
     const BentLimbPair pair;
     MatchOptions options = one_candidate_options();
-    options.stretch_weight = 0;
+    options.guided.stretch_weight = 0;
     const MatchResult free = match(pair.template_mesh, pair.target, options);
-    options.stretch_weight = 0.1;
+    options.guided.stretch_weight = 0.1;
     const MatchResult stretched = match(pair.template_mesh, pair.target, options);
     const double free_strain = mean_edge_strain(pair.template_mesh, free);
     const double stretched_strain = mean_edge_strain(pair.template_mesh, stretched);
@@ -811,7 +850,7 @@ TEST(Match, StretchingEnergyKeepsEdgeLengthsAndTheMatch) {
     EXPECT_EQ(free.stretch_weight, 0);
     EXPECT_DOUBLE_EQ(free.eigenfunction_guidance, 0.1);
     EXPECT_DOUBLE_EQ(stretched.stretch_weight, 0.1);
-    options.stretch_weight = -1;
+    options.guided.stretch_weight = -1;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
 }
 
@@ -822,28 +861,28 @@ TEST(Match, StiffnessAndGuidanceCandidatesKeepOneAndReportIt) {
     const BentLimbPair pair;
     MatchOptions options = one_candidate_options();
     const MatchResult single = match(pair.template_mesh, pair.target, options);
-    EXPECT_DOUBLE_EQ(single.stretch_weight, options.stretch_weight);
-    EXPECT_DOUBLE_EQ(single.eigenfunction_guidance, options.eigenfunction_guidance);
-    options.stiffness_candidates = 3;
-    options.guidance_candidates = 2;
+    EXPECT_DOUBLE_EQ(single.stretch_weight, options.guided.stretch_weight);
+    EXPECT_DOUBLE_EQ(single.eigenfunction_guidance, options.guided.eigenfunction_guidance);
+    options.guided.stiffness_candidates = 3;
+    options.guided.guidance_candidates = 2;
     const MatchResult chosen = match(pair.template_mesh, pair.target, options);
     std::printf("kept weight %.3g and guidance %.3g, error %.4f -> %.4f\n", chosen.stretch_weight,
                 chosen.eigenfunction_guidance, pair.error(single), pair.error(chosen));
-    const double w = options.stretch_weight;
+    const double w = options.guided.stretch_weight;
     EXPECT_TRUE(chosen.stretch_weight == w || chosen.stretch_weight == 4 * w ||
                 chosen.stretch_weight == 16 * w)
         << chosen.stretch_weight;
-    const double g = options.eigenfunction_guidance;
+    const double g = options.guided.eigenfunction_guidance;
     EXPECT_TRUE(chosen.eigenfunction_guidance == g || chosen.eigenfunction_guidance == 2 * g)
         << chosen.eigenfunction_guidance;
     EXPECT_LT(pair.error(chosen), 1.2 * pair.error(single) + 1e-3);
     // The stiffer candidates' flows come on top.
     EXPECT_GT(chosen.levels.front().iterations, single.levels.front().iterations);
-    options.stiffness_candidates = 0;
+    options.guided.stiffness_candidates = 0;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
-    options.stiffness_candidates = 3;
+    options.guided.stiffness_candidates = 3;
     for (const int wrong : {0, 9}) {
-        options.guidance_candidates = wrong;
+        options.guided.guidance_candidates = wrong;
         EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
     }
 }
@@ -855,10 +894,10 @@ TEST(Match, RefinementKeepsOneFlowOfTheNextLevelAndReportsIt) {
     const BentLimbPair pair;
     MatchOptions options = one_candidate_options();
     options.levels = 2;
-    options.refinement_guidances = 0;
+    options.refinement.guidances = 0;
     const MatchResult plain = match(pair.template_mesh, pair.target, options);
     EXPECT_EQ(plain.refinement_guidance, 0);
-    options.refinement_guidances = 2;
+    options.refinement.guidances = 2;
     const MatchResult refined = match(pair.template_mesh, pair.target, options);
     std::printf("kept refinement guidance %.3g, error %.4f -> %.4f\n", refined.refinement_guidance,
                 pair.error(plain), pair.error(refined));
@@ -867,7 +906,7 @@ TEST(Match, RefinementKeepsOneFlowOfTheNextLevelAndReportsIt) {
     EXPECT_DOUBLE_EQ(refined.levels[0].energy_end, plain.levels[0].energy_end);
     EXPECT_DOUBLE_EQ(refined.levels[1].energy_start, plain.levels[1].energy_start);
     EXPECT_GT(refined.levels[1].iterations, 3 * plain.levels[1].iterations / 2);
-    const double g = options.eigenfunction_guidance;
+    const double g = options.guided.eigenfunction_guidance;
     EXPECT_TRUE(refined.refinement_guidance == 0 || refined.refinement_guidance == g ||
                 refined.refinement_guidance == g / 2)
         << refined.refinement_guidance;
@@ -877,17 +916,17 @@ TEST(Match, RefinementKeepsOneFlowOfTheNextLevelAndReportsIt) {
     }
     EXPECT_LT(pair.error(refined), 1.2 * pair.error(plain) + 1e-3);
     for (const int wrong : {-1, 9}) {
-        options.refinement_guidances = wrong;
+        options.refinement.guidances = wrong;
         EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
     }
-    options.refinement_guidances = 2;
+    options.refinement.guidances = 2;
     options.refinement_iterations = -1;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
     options.refinement_iterations = 50;
-    options.map_fits = -1;
+    options.map_fit.max_fits = -1;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
-    options.map_fits = 6;
-    options.alternative_starts = -1;
+    options.map_fit.max_fits = 6;
+    options.second_opinion.alternative_starts = -1;
     EXPECT_THROW((void)match(pair.template_mesh, pair.target, options), InvalidInput);
 }
 
@@ -937,20 +976,20 @@ TEST(Match, RejectsBadInput) {
     EXPECT_THROW((void)match(mesh, mesh, sharper), InvalidInput);
     for (const double tolerance : {-0.01, static_cast<double>(NAN)}) {
         MatchOptions shortlist;
-        shortlist.selection_tolerance = tolerance;
+        shortlist.starts.selection_tolerance = tolerance;
         EXPECT_THROW((void)match(mesh, mesh, shortlist), InvalidInput);
         MatchOptions guidance;
-        guidance.signature_guidance = tolerance;
+        guidance.guided.signature_guidance = tolerance;
         EXPECT_THROW((void)match(mesh, mesh, guidance), InvalidInput);
         MatchOptions eigenfunctions;
-        eigenfunctions.eigenfunction_guidance = tolerance;
+        eigenfunctions.guided.eigenfunction_guidance = tolerance;
         EXPECT_THROW((void)match(mesh, mesh, eigenfunctions), InvalidInput);
         MatchOptions contention;
-        contention.contender_tolerance = tolerance;
+        contention.starts.contender_tolerance = tolerance;
         EXPECT_THROW((void)match(mesh, mesh, contention), InvalidInput);
     }
     MatchOptions no_contender;
-    no_contender.contenders = 0;
+    no_contender.starts.contenders = 0;
     EXPECT_THROW((void)match(mesh, mesh, no_contender), InvalidInput);
 }
 
@@ -972,8 +1011,8 @@ TEST(Correspondence, ClosestPointsLieOnTheTarget) {
 }
 
 // The second opinion was given and kept, and so the next landmark sets' starts were tried too
-// (MatchOptions::alternative_starts): the result is its or one of theirs, which disagrees no
-// more, no longer doubtful, and on the figure.
+// (MatchOptions::second_opinion.alternative_starts): the result is its or one of theirs, which
+// disagrees no more, no longer doubtful, and on the figure.
 void expect_second_opinion_kept(const test::PosedSpikedFigure& figure, const MatchResult& result,
                                 bool alternatives) {
     ASSERT_TRUE(result.second_opinion_disagreement.has_value());
@@ -999,7 +1038,7 @@ void expect_second_opinion_kept(const test::PosedSpikedFigure& figure, const Mat
 // 0.50 and 0.31.)
 TEST(Match, SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss) {
     const test::PosedSpikedFigure figure;
-    ASSERT_GT(MatchOptions{}.alternative_starts, 0);
+    ASSERT_GT(MatchOptions{}.second_opinion.alternative_starts, 0);
     expect_second_opinion_kept(figure, match(figure.template_mesh, figure.target), false);
 }
 
@@ -1011,9 +1050,9 @@ TEST(Match, SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss) {
 TEST(Match, DisagreeingMatchTakesTheSecondOpinionAfterTheRigidStarts) {
     const test::PosedSpikedFigure figure;
     MatchOptions options;
-    options.second_opinion_above = 0.14;
-    options.alternative_starts_above = 0.1;
-    options.alternative_starts = 1;
+    options.second_opinion.above = 0.14;
+    options.second_opinion.alternative_starts_above = 0.1;
+    options.second_opinion.alternative_starts = 1;
     expect_second_opinion_kept(figure, match(figure.template_mesh, figure.target, options), true);
 }
 
@@ -1021,10 +1060,10 @@ TEST(Match, RejectsANegativeSecondOpinionOrAlternativeStartsThreshold) {
     const TriangleMesh mesh = make_icosphere(2);
     for (const double threshold : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
         MatchOptions options;
-        options.second_opinion_above = threshold;
+        options.second_opinion.above = threshold;
         EXPECT_THROW((void)match(mesh, mesh, options), InvalidInput) << threshold;
         options = MatchOptions{};
-        options.alternative_starts_above = threshold;
+        options.second_opinion.alternative_starts_above = threshold;
         EXPECT_THROW((void)match(mesh, mesh, options), InvalidInput) << threshold;
     }
 }

@@ -33,7 +33,7 @@ TEST(Prepare, BuildsANestedPyramidAndTheRigidStarts) {
     const MovedLimb pair;
     MatchOptions options;
     options.coarse_vertices = 300;
-    options.alignment_candidates = 3;
+    options.starts.candidates = 3;
     const Prepared prepared = prepare(pair.template_mesh, pair.target, options);
     ASSERT_GE(prepared.pyramid.size(), 2U);
     EXPECT_EQ(prepared.pyramid.front().template_mesh.V, pair.template_mesh.V);
@@ -53,7 +53,7 @@ TEST(Prepare, BuildsANestedPyramidAndTheRigidStarts) {
     EXPECT_EQ(prepared.starts.size(), 3U);
     EXPECT_FALSE(prepared.volume_scale.has_value());  // a smooth target: the areas hold
 
-    options.align = false;  // the inputs as they are placed
+    options.starts.enabled = false;  // the inputs as they are placed
     const Prepared unaligned = prepare(pair.template_mesh, pair.target, options);
     ASSERT_EQ(unaligned.starts.size(), 1U);
     EXPECT_EQ(unaligned.starts.front().matrix(), Eigen::Matrix4d::Identity());
@@ -104,8 +104,8 @@ struct PreparedLimb {
         options.max_iterations = 60;
         options.fine_iterations = 5;
         options.refinement_iterations = 5;
-        options.selection_iterations = 20;
-        options.alignment_candidates = 2;
+        options.starts.selection_iterations = 20;
+        options.starts.candidates = 2;
         prepared = prepare(pair.template_mesh, pair.target, options);
     }
     [[nodiscard]] const Level& coarsest() const { return prepared.pyramid.back(); }
@@ -126,7 +126,7 @@ TEST(GuidedRounds, RunForTheBendingPriorsAndDecideInH1) {
         EXPECT_EQ(guided_prior(prior), prior == MatchPrior::Isometric ? MatchPrior::H1 : prior);
     }
     options.prior = MatchPrior::H1;
-    options.signature_guidance = 0;
+    options.guided.signature_guidance = 0;
     EXPECT_FALSE(runs_guided_rounds(options));
 }
 
@@ -150,12 +150,12 @@ TEST(GuidedRounds, LowerThePlainDistanceAndReportTheKeptCandidate) {
     EXPECT_LT(outcome.flow.energy.back(), outcome.flow.energy.front());
     // Signature-guided then plain, and per stiffness guided then plain (then settled): at least
     // one step each.
-    EXPECT_GE(outcome.flow.steps, 2 + 2 * limb.options.stiffness_candidates);
-    const double w = limb.options.stretch_weight;
+    EXPECT_GE(outcome.flow.steps, 2 + 2 * limb.options.guided.stiffness_candidates);
+    const double w = limb.options.guided.stretch_weight;
     EXPECT_TRUE(outcome.stretch_weight == w || outcome.stretch_weight == 4 * w ||
                 outcome.stretch_weight == 16 * w)
         << outcome.stretch_weight;
-    EXPECT_EQ(outcome.eigenfunction_guidance, limb.options.eigenfunction_guidance);
+    EXPECT_EQ(outcome.eigenfunction_guidance, limb.options.guided.eigenfunction_guidance);
     EXPECT_DOUBLE_EQ(outcome.disagreement, disagreement(analysis, outcome.flow.mesh.V));
     EXPECT_FALSE(outcome.signatures_alone);
 
@@ -172,8 +172,8 @@ TEST(GuidedRounds, LowerThePlainDistanceAndReportTheKeptCandidate) {
 TEST(CoarsestLevel, KeepsAStartOnTheTargetAndReportsTheSecondOpinion) {
     for (const double second_opinion_above : {0.0, std::numeric_limits<double>::infinity()}) {
         MatchOptions options;
-        options.second_opinion_above = second_opinion_above;
-        options.alternative_starts = 0;
+        options.second_opinion.above = second_opinion_above;
+        options.second_opinion.alternative_starts = 0;
         PreparedLimb limb(options);
         const SpectralDescriptors analysis = limb.analysis();
         const LevelFlows flows(limb.prepared.pyramid, limb.options, limb.diagonal, limb.cancelled);

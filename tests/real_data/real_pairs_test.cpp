@@ -116,7 +116,7 @@ void expect_stranded_only_at_contacts(const CorrespondenceError& error, const st
 // centaur 1.4 % (average 1.7 %), and the stretching energy in their flows keeps the coarsest
 // template from sliding along the target: cat 2.4 %, FAUST 0.9 %, centaur 1.1 % (average 1.5 %;
 // with the stiffer candidates of that round, FAUST 0.8 %), and the refining flows of the next
-// level put the cat's points nearer their places: 1.8 % (MatchOptions::refinement_guidances).
+// level put the cat's points nearer their places: 1.8 % (MatchOptions::refinement).
 // A flipped start strands hundreds of vertices far from their places; small FAUST's near ties
 // have ended either at 0.85 % with none stranded or at 0.75 % with two, where a hand meets a
 // thigh, 2.3 and 2.5 % of the diagonal from their places (the latter on an AMD EPYC 9004, the
@@ -189,7 +189,7 @@ TEST(RealPairs, IsometricBodyIsNotTurnedFrontToBack) {
 
 // The libigl arm (8.3K vertices, bent at the elbow and wrist): the start that agreed best after
 // the selection flows is twisted about the arm (6.7 % mean error at the end); its rival, 13 %
-// behind then, ends agreeing better and 2.1 % from the truth (MatchOptions::contenders); the
+// behind then, ends agreeing better and 2.1 % from the truth (MatchOptions::starts.contenders); the
 // refining flows of the next level take it to 1.6 %.
 TEST(RealPairs, TwistedArmStartLosesToItsRival) {
     const std::optional<CorrespondenceError> error = default_match_error("libigl_arm_rest_pose2");
@@ -216,7 +216,7 @@ TEST(RealPairs, FullCatFindsTheRightFunctionalMap) {
 
 // The makehuman hand (h1): its fingers ended a little along and around the right ones (1.94 %
 // mean error); drawn towards where a fine functional map puts them, the heat kernel signatures
-// agree 12 % better with the target's and the fit is kept (MatchOptions::map_fits): 1.29 %.
+// agree 12 % better with the target's and the fit is kept (MatchOptions::map_fit): 1.29 %.
 TEST(RealPairs, HandFollowsTheFineMap) {
     const std::optional<CorrespondenceError> error =
         default_match_error("makehuman_hand_rest_pose1");
@@ -420,12 +420,12 @@ TEST(RealPairs, KneelingManIsMatchedAtHisSize) {
 // TOSCA michael from standing (pose 1) to kneeling (pose 2), the target simplified as in
 // docs/eval/posed_templates.json: every rigid start and the preferred intrinsic start match
 // him front to back (22.6 % mean error, 0.27 disagreement: not doubtful); one of the next
-// landmark sets' starts is right (MatchOptions::alternative_starts, tried because the second
-// opinion was kept), and its result disagrees less (0.24). The fine map ZoomOut finds from 10
-// functions is mirrored: fitted to it, he lay on the target inside out (2.7 → 4.6 %), though the
-// signatures agreed better; the turning functions, which fell from 0.33 to −0.34, refuse that
-// fit (detail::keeps_fit()). The map from 20 functions keeps his left and right, and the fit to
-// it is kept (2.7 → 0.9 %; kFineMapFirstSizes). About two minutes.
+// landmark sets' starts is right (MatchOptions::second_opinion.alternative_starts, tried because
+// the second opinion was kept), and its result disagrees less (0.24). The fine map ZoomOut finds
+// from 10 functions is mirrored: fitted to it, he lay on the target inside out (2.7 → 4.6 %),
+// though the signatures agreed better; the turning functions, which fell from 0.33 to −0.34, refuse
+// that fit (detail::keeps_fit()). The map from 20 functions keeps his left and right, and the fit
+// to it is kept (2.7 → 0.9 %; kFineMapFirstSizes). About two minutes.
 TEST(RealPairs, KneelingManFromAnotherPoseGetsAnAlternativeStart) {
     const std::optional<SimplifiedPair> pair = kneeling_pair(1);
     if (!pair) {
@@ -444,7 +444,7 @@ TEST(RealPairs, KneelingManFromAnotherPoseGetsAnAlternativeStart) {
 // docs/eval/posed_templates.json: the last round guided by the eigenfunctions, carried by a map
 // fitted to a poor first match, puts his torso's front on its back (4.0 % mean error,
 // doubtful); guided by the signatures alone it does not, and disagrees half as much
-// (MatchOptions::signature_fallback; 2.4 %). His hands rest on his thighs: embedded in the
+// (MatchOptions::guided.signature_fallback; 2.4 %). His hands rest on his thighs: embedded in the
 // closest coarse face of all, the finer levels carried some of their vertices with the thighs,
 // up to 12 % of the diagonal short of the target's outstretched hands and off its surface
 // (2.4 %, 58 vertices stranded, the target's fingertips uncovered); embedded along the surface
@@ -548,7 +548,7 @@ std::optional<SimplifiedPair> elephant_pair() {
 // The libigl elephant from its frame 100 to its frame 300 (docs/eval/posed_templates.json):
 // the template's stride puts each leg nearest the other's place. Both pairs of legs were
 // matched exchanged (7.7 % mean error in docs/eval, not doubtful) while the eigenfunctions' map
-// was chosen by its orthogonality, and the check for swapped limbs (MatchOptions::swap_limbs)
+// was chosen by its orthogonality, and the check for swapped limbs (MatchOptions::limb_swaps)
 // exchanged them back. Chosen by the signatures' agreement too, the map puts the legs on their
 // own places already (1.28 %): the check exchanges nothing, so the match is the one without it.
 // About 12 seconds.
@@ -568,7 +568,7 @@ TEST(RealPairs, ElephantsLegsEndOnTheirOwnPlaces) {
 // The Sumner cat from its pose 02 to its pose 05 (docs/eval/posed_templates.json), which stands
 // on its hind legs: the match puts each front leg on the other's place (4.66 % mean error, 1483
 // vertices stranded without the check), and the check for swapped limbs
-// (MatchOptions::swap_limbs) exchanges them back (1.58 %, none stranded); of the pairs of
+// (MatchOptions::limb_swaps) exchanges them back (1.58 %, none stranded); of the pairs of
 // docs/eval, the one where the check still matters. About 40 seconds.
 TEST(RealPairs, SumnerCatsFrontLegsAreExchangedBack) {
     const std::optional<SimplifiedPair> pair =
@@ -577,7 +577,7 @@ TEST(RealPairs, SumnerCatsFrontLegsAreExchangedBack) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no Sumner cat in it";
     }
     MatchOptions options;
-    options.swap_limbs = false;
+    options.limb_swaps.enabled = false;
     const CorrespondenceError unchecked = correspondence_error(
         match(pair->template_mesh, pair->target, options).deformed.V, pair->truth);
     const MatchResult result = match(pair->template_mesh, pair->target);

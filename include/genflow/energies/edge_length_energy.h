@@ -16,7 +16,7 @@ namespace genflow {
 /// rest mesh's edge graph, which include rigid motions and bending at its edges, and (s − 1)²
 /// for a uniform scaling by s. Not in the paper: shape matching adds it to d_H so that the
 /// template's intrinsic geometry, which d_H cannot see, stays where a nearly isometric pose
-/// change keeps it (MatchOptions::stretch_weight).
+/// change keeps it (MatchOptions::guided.stretch_weight).
 ///
 /// - differential: ∂E/∂x_i = 2/Σℓ² · Σ_{e∋i} (|d_e| − ℓ_e) d_e/|d_e|, d_e = x_i − x_j (an edge of
 ///   zero length contributes nothing there, its subgradient).

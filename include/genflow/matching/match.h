@@ -72,8 +72,97 @@ struct MatchStage {
 /// its 11 results, up to 4 % off.
 inline constexpr double kDoubtfulDisagreement = 0.35;
 
+/// The coarsest level's rigid starts (src/matching/coarsest_level.h): alignment hypotheses,
+/// each flowed briefly in the H1 metric and judged by how far it disagrees with the target
+/// intrinsically.
+struct StartOptions {
+    /// Start from rigid alignments; off: from the inputs' frames, as placed.
+    bool enabled = true;
+    /// Rigid starts flowed, `selection_iterations` H1 steps each.
+    int candidates = 6;
+    int selection_iterations = 300;
+    /// The shortlist: the starts whose d_H ends within this share of the lowest.
+    double selection_tolerance = 0.05;
+    /// Of the shortlist, at most this many whose disagreement is within `contender_tolerance` of
+    /// the lowest go through the guided rounds; the one that ends disagreeing least is kept.
+    int contenders = 2;
+    double contender_tolerance = 0.25;
+    /// Options of the rigid alignment.
+    RigidAlignmentOptions alignment;
+};
+
+/// The coarsest level's guided rounds (src/matching/guided_rounds.h), in h1, articulated and
+/// isometric matches: d_H augmented with descriptors, so that a point is near only to points
+/// both close and alike.
+struct GuidedRoundOptions {
+    bool enabled = true;
+    /// Weight of the heat kernel signatures in the first round, as a fraction of the target's
+    /// diagonal per standard deviation (0 = no guided rounds).
+    double signature_guidance = 0.1;
+    /// Weight of the eigenfunctions, carried over by the functional map the first round implies,
+    /// in the last round and the refinement: they tell left from right (0 = the last round
+    /// guided by the signatures).
+    double eigenfunction_guidance = 0.1;
+    /// The last round also at eigenfunction_guidance × 2^j, j < this; the least disagreeing
+    /// result is kept.
+    int guidance_candidates = 1;
+    /// Weight of the template's edge stretching (times the diagonal) in the last round: d_H
+    /// cannot see tangential sliding (0 = none).
+    double stretch_weight = 0.1;
+    /// The last round at stretch_weight × 4^k, k < this, the stiffer ones settled at
+    /// stretch_weight; the least disagreeing result is kept.
+    int stiffness_candidates = 3;
+    /// A doubtful last round runs again guided by the signatures alone, kept if it disagrees
+    /// less.
+    bool signature_fallback = true;
+};
+
+/// The second opinion (src/matching/intrinsic_start.h): the guided rounds also from an
+/// intrinsic start (the extremities matched by geodesic distances), kept by
+/// detail::replaces().
+struct SecondOpinionOptions {
+    bool enabled = true;
+    /// 0: asked of every match, side by side with the rigid starts; above 0, only of results
+    /// that disagree more than this, after them.
+    double above = 0;
+    /// A doubtful result, or one from the second opinion above `alternative_starts_above`, is
+    /// matched again from the intrinsic starts of up to this many further landmark sets; the
+    /// least disagreeing is kept (0 = none).
+    int alternative_starts = 3;
+    double alternative_starts_above = 0.15;
+};
+
+/// The exchange of limbs the match put on each other's places (src/matching/swapped_limbs.h),
+/// at the coarsest and the second coarsest level, kept by detail::keeps_limb_exchange(). Needs
+/// the second opinion's analyses.
+struct LimbSwapOptions {
+    bool enabled = true;
+};
+
+/// The second coarsest level's guided refinement (src/matching/finer_levels.h): flows guided by
+/// the eigenfunctions at eigenfunction_guidance × 2^-j, j < `guidances`, before the plain
+/// flow; of those and the plain flow alone, the least disagreeing is kept.
+struct RefinementOptions {
+    bool enabled = true;
+    int guidances = 2;
+};
+
+/// Turning back the parts of the second coarsest level that a fine functional map places
+/// turned over (more than 90°, not a reflection), kept if d_H stays about as low.
+struct TurnBackOptions {
+    bool enabled = true;
+};
+
+/// Fits of the second coarsest level to where a fine functional map puts it, each kept only by
+/// detail::first_kept_fit().
+struct MapFitOptions {
+    bool enabled = true;
+    int max_fits = 6;
+};
+
 /// Parameters of match(). Every length is relative to the meshes, so the defaults need no
-/// tuning per pair. What each stage was measured to do: docs/matching.md, "Options".
+/// tuning per pair. Each stage of the pipeline has its options and an `enabled` switch; what each
+/// was measured to do: docs/matching.md, "Options".
 struct MatchOptions {
     /// The deformation prior: the metric of the flow.
     MatchPrior prior = MatchPrior::H1;
@@ -97,62 +186,16 @@ struct MatchOptions {
     bool implicit = false;
     /// A flow has converged when d_H fell by less than this fraction over its last 20 steps.
     double stagnation_tolerance = 1e-3;
-    /// Start from rigid alignments: `alignment_candidates` starts each flow `selection_iterations`
-    /// H1 steps; of those within `selection_tolerance` of the lowest d_H, the one that disagrees
-    /// least with the target intrinsically goes on.
-    bool align = true;
-    int alignment_candidates = 6;
-    int selection_iterations = 300;
-    double selection_tolerance = 0.05;
-    /// At most this many shortlisted starts whose disagreement is within `contender_tolerance` of
-    /// the lowest each go through the guided rounds; the one that ends disagreeing least is kept (1
-    /// = off).
-    int contenders = 2;
-    double contender_tolerance = 0.25;
-    /// Weight of the heat kernel signatures in the coarsest level's first guided flow, as a
-    /// fraction of the target's diagonal per standard deviation (0 = no guided rounds). h1,
-    /// articulated and isometric only.
-    double signature_guidance = 0.1;
-    /// Weight of the eigenfunctions, carried over by the functional map the first guided match
-    /// implies, in the last guided round and the refinement: they tell left from right (0 = off).
-    double eigenfunction_guidance = 0.1;
-    /// The last round also at eigenfunction_guidance × 2^j, j < this; the least disagreeing result
-    /// is kept (1 = off).
-    int guidance_candidates = 1;
-    /// A doubtful last round runs again guided by the signatures alone, kept if it disagrees less.
-    bool signature_fallback = true;
-    /// Weight of the template's edge stretching (times the diagonal) in the last guided round: d_H
-    /// cannot see tangential sliding (0 = off).
-    double stretch_weight = 0.1;
-    /// The last round at stretch_weight × 4^k, k < this, the stiffer ones settled at
-    /// stretch_weight; the least disagreeing result is kept (1 = off).
-    int stiffness_candidates = 3;
-    /// The second coarsest level also flows `refinement_iterations` steps guided by the
-    /// eigenfunctions at eigenfunction_guidance × 2^-j, j < this, before its plain flow; of those
-    /// and the plain flow alone, the least disagreeing is kept (0 = off).
-    int refinement_guidances = 2;
+    /// Steps of each further flow on the second coarsest level (its guided refinement, the
+    /// turn-back and the fits to the fine map).
     int refinement_iterations = 50;
-    /// Turn back the parts of the second coarsest level that a fine functional map places turned
-    /// over (more than 90°, not a reflection), kept if d_H stays about as low (guided matches).
-    bool turn_back_parts = true;
-    /// At most this many fits of the second coarsest level to where a fine functional map puts it,
-    /// each kept only by detail::first_kept_fit() (0 = none; guided matches).
-    int map_fits = 6;
-    /// The guided rounds also from an intrinsic start (extremities matched by geodesic distances),
-    /// kept by detail::replaces(): 0 = always, side by side with the rigid starts; above 0, only
-    /// for results that disagree more than this; +inf = never.
-    double second_opinion_above = 0;
-    /// A doubtful result, or one from the second opinion above `alternative_starts_above`, is
-    /// matched again from the intrinsic starts of up to this many further landmark sets; the least
-    /// disagreeing is kept (0 = none).
-    int alternative_starts = 3;
-    double alternative_starts_above = 0.15;
-    /// Exchange limbs the match put on each other's places (the turning functions of pairs of
-    /// extremities tell), at the coarsest and the second coarsest level, kept by
-    /// detail::keeps_limb_exchange(). Needs the second opinion's analyses.
-    bool swap_limbs = true;
-    /// Options of the rigid alignment.
-    RigidAlignmentOptions alignment;
+    StartOptions starts;
+    GuidedRoundOptions guided;
+    SecondOpinionOptions second_opinion;
+    LimbSwapOptions limb_swaps;
+    RefinementOptions refinement;
+    TurnBackOptions turn_back;
+    MapFitOptions map_fit;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
     /// The template's parts (required by the articulated prior; joint centres in the template's own
@@ -197,32 +240,33 @@ struct MatchResult {
     Similarity initial_alignment;    ///< the rigid start (identity without `align`)
     std::vector<MatchLevel> levels;  ///< coarsest first
     double hausdorff_energy = 0;     ///< final d_H on the finest level
-    /// The stretch weight of the kept last guided round (MatchOptions::stiffness_candidates);
-    /// 0 when no guided round had the stretching energy.
+    /// The stretch weight of the kept last guided round
+    /// (MatchOptions::guided.stiffness_candidates); 0 when no guided round had the stretching
+    /// energy.
     double stretch_weight = 0;
-    /// The eigenfunction guidance of the kept last round (MatchOptions::guidance_candidates);
-    /// 0 without it.
+    /// The eigenfunction guidance of the kept last round
+    /// (MatchOptions::guided.guidance_candidates); 0 without it.
     double eigenfunction_guidance = 0;
     /// Whether the kept last round was guided by the signatures alone
-    /// (MatchOptions::signature_fallback); its eigenfunction_guidance is then 0.
+    /// (MatchOptions::guided.signature_fallback); its eigenfunction_guidance is then 0.
     bool signature_fallback = false;
     /// The eigenfunction guidance of the kept refining flow of the second coarsest level
-    /// (MatchOptions::refinement_guidances); 0 when its plain flow was kept or none ran.
+    /// (MatchOptions::refinement); 0 when its plain flow was kept or none ran.
     double refinement_guidance = 0;
-    /// How many parts MatchOptions::turn_back_parts turned back.
+    /// How many parts MatchOptions::turn_back turned back.
     int turned_parts = 0;
-    /// How many fits to the fine map were kept (MatchOptions::map_fits).
+    /// How many fits to the fine map were kept (MatchOptions::map_fit).
     int map_fits = 0;
-    /// The intrinsic disagreement of the second opinion (MatchOptions::second_opinion_above),
+    /// The intrinsic disagreement of the second opinion (MatchOptions::second_opinion),
     /// if one was given, and whether its result was kept.
     std::optional<double> second_opinion_disagreement;
     bool second_opinion = false;
     /// How many intrinsic starts of further landmark sets were tried
-    /// (MatchOptions::alternative_starts), and which was kept (its rank, 1 = the first after
-    /// the second opinion's; 0 = none).
+    /// (MatchOptions::second_opinion.alternative_starts), and which was kept (its rank, 1 = the
+    /// first after the second opinion's; 0 = none).
     int alternative_starts = 0;
     int alternative_start = 0;
-    /// How many pairs of limbs MatchOptions::swap_limbs exchanged, at the coarsest and the
+    /// How many pairs of limbs MatchOptions::limb_swaps exchanged, at the coarsest and the
     /// refined level (0 if no match from the exchanges was kept, or none was tried). The other
     /// fields say where the coarsest result it started from came from.
     int swapped_limbs = 0;
@@ -259,7 +303,7 @@ struct MatchResult {
 /// Deforms `template_mesh` onto `target` (another pose of the same subject, any sampling and
 /// connectivity) by the flow of the pseudo-Hausdorff distance in the metric of the prior
 /// (paper eq. 14): optional global rigid alignment (rigid_alignment_candidates(); with several
-/// candidates, each is flowed on the coarsest level and one is kept as MatchOptions::align
+/// candidates, each is flowed on the coarsest level and one is kept as MatchOptions::starts
 /// describes), then, from the coarsest level to the input, steepest descent with Armijo
 /// backtracking and a displacement cap (gradient_descent()), each level started from the coarser
 /// one by transfer(). ε is the mean edge length of each level's target.
