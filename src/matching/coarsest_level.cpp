@@ -234,19 +234,22 @@ private:
     CoarsestMatch match_;
 };
 
+// The steps of a rigid start's selection flow.
+int selection_steps(const MatchOptions& options) {
+    return std::min(options.starts.selection_iterations, options.max_iterations);
+}
+
 // The rigid starts' selection flows: `selection_iterations` steps each in the H1 metric, which
 // lets the template reach the target's surface whatever the match's prior (the signatures are
 // compared where the flow put the points).
 std::vector<FlowResult> selection_flows(const Prepared& prepared, const LevelFlows& flows,
                                         const MatchOptions& options) {
     const std::vector<Similarity>& starts = prepared.starts;
-    const int coarsest = static_cast<int>(prepared.pyramid.size()) - 1;
-    const int steps = std::min(options.starts.selection_iterations, options.max_iterations);
     std::vector<FlowResult> results(starts.size());
     run_side_by_side(starts.size(), [&](std::size_t k) {
-        TriangleMesh placed = prepared.pyramid.back().template_mesh;
-        placed.V = starts[k].apply(placed.V);
-        results[k] = flows.flow(coarsest, placed, steps, starts[k], MatchPrior::H1, {}, 0, k == 0);
+        results[k] =
+            flows.flow(flows.coarsest(), placed_template(prepared.pyramid.back(), starts[k]),
+                       selection_steps(options), starts[k], MatchPrior::H1, {}, 0, k == 0);
     });
     return results;
 }
@@ -256,17 +259,14 @@ std::vector<FlowResult> selection_flows(const Prepared& prepared, const LevelFlo
 FlowResult unguided_flow(const Prepared& prepared, const LevelFlows& flows,
                          const MatchOptions& options, const Similarity& start,
                          const FlowResult* selection) {
-    const int coarsest = static_cast<int>(prepared.pyramid.size()) - 1;
-    const int selection_steps =
-        std::min(options.starts.selection_iterations, options.max_iterations);
     if (selection == nullptr || options.prior != MatchPrior::H1) {
-        TriangleMesh placed = prepared.pyramid.back().template_mesh;
-        placed.V = start.apply(placed.V);
-        return flows.flow(coarsest, placed, options.max_iterations, start, options.prior);
+        return flows.flow(flows.coarsest(), placed_template(prepared.pyramid.back(), start),
+                          options.max_iterations, start, options.prior);
     }
     FlowResult best = *selection;
-    if (best.status != FlowStatus::Converged && options.max_iterations > selection_steps) {
-        FlowResult more = flows.flow(coarsest, best.mesh, options.max_iterations - selection_steps,
+    const int steps = selection_steps(options);
+    if (best.status != FlowStatus::Converged && options.max_iterations > steps) {
+        FlowResult more = flows.flow(flows.coarsest(), best.mesh, options.max_iterations - steps,
                                      start, options.prior);
         more.steps += best.steps;
         more.energy.insert(more.energy.begin(), best.energy.begin(), best.energy.end() - 1);
@@ -310,9 +310,9 @@ CoarsestMatch match_coarsest_level(const Prepared& prepared, const LevelFlows& f
     if (guided_prior(options.prior) != options.prior && !cancelled) {
         // The kept result flows on in the prior's metric, at the stiffness it was kept at; the
         // level reports the plain d_H, as the guided rounds do.
-        const int coarsest = static_cast<int>(prepared.pyramid.size()) - 1;
-        FlowResult prior_flow = flows.flow(coarsest, match.flow.mesh, options.max_iterations,
-                                           match.start, options.prior, {}, match.stretch_weight);
+        FlowResult prior_flow =
+            flows.flow(flows.coarsest(), match.flow.mesh, options.max_iterations, match.start,
+                       options.prior, {}, match.stretch_weight);
         prior_flow.steps += match.flow.steps;
         prior_flow.energy.front() = match.flow.energy.front();
         prior_flow.energy.back() =

@@ -12,15 +12,12 @@
 #include "matching/map_fit.h"
 #include "matching/selection.h"
 #include "matching/side_by_side.h"
+#include "matching/stopwatch.h"
 #include "matching/turned_parts.h"
 
 namespace genflow::detail {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 // The embedding of a template level after the similarity: offsets scale and rotate with it.
 Embedding moved_embedding(const Embedding& embedding, const Similarity& similarity) {
@@ -46,12 +43,8 @@ FinerLevels::FinerLevels(const std::vector<Level>& pyramid, const LevelFlows& fl
 
 // Level l's template carried from the deformed level l + 1 (both at rest placed by the start).
 TriangleMesh FinerLevels::carry_to(int l, const Eigen::MatrixX3d& coarse_deformed) const {
-    TriangleMesh rest = level(l).template_mesh;
-    rest.V = start_.apply(rest.V);
-    TriangleMesh coarse_rest = level(l + 1).template_mesh;
-    coarse_rest.V = start_.apply(coarse_rest.V);
-    return transfer(rest, coarse_rest, coarse_deformed,
-                    moved_embedding(level(l).embedding, start_));
+    return transfer(placed_template(level(l), start_), placed_template(level(l + 1), start_),
+                    coarse_deformed, moved_embedding(level(l).embedding, start_));
 }
 
 // The rows of level l's template that are the coarsest template's vertices (a subset of every
@@ -248,8 +241,7 @@ bool FinerLevels::exchange_limbs(int l, FlowResult& flow) {
 void FinerLevels::refine_further(int l, FlowResult& flow) {
     std::optional<FineSpectrum> spectrum;
     if ((options_.turn_back.enabled || fits()) && !cancelled_) {
-        TriangleMesh rest = level(l).template_mesh;
-        rest.V = start_.apply(rest.V);
+        const TriangleMesh rest = placed_template(level(l), start_);
         spectrum.emplace(rest, level(l).target);
         std::vector<VertexMap> maps = spectrum->zoomed_out_maps(flow.mesh.V);
         if (options_.turn_back.enabled) {

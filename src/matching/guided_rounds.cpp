@@ -36,13 +36,13 @@ GuidedRounds::GuidedRounds(const std::vector<Level>& pyramid, const LevelFlows& 
 FlowResult GuidedRounds::guided_then_plain(const TriangleMesh& from, const Similarity& placement,
                                            const PointDescriptors& descriptors,
                                            double stretch_weight, bool reports) const {
-    FlowResult guided = flows_.flow(coarsest(), from, options_.max_iterations, placement, prior_,
-                                    descriptors, stretch_weight, reports);
+    FlowResult guided = flows_.flow(flows_.coarsest(), from, options_.max_iterations, placement,
+                                    prior_, descriptors, stretch_weight, reports);
     if (cancelled_) {
         return guided;
     }
-    FlowResult plain = flows_.flow(coarsest(), guided.mesh, options_.max_iterations, placement,
-                                   prior_, {}, stretch_weight, reports);
+    FlowResult plain = flows_.flow(flows_.coarsest(), guided.mesh, options_.max_iterations,
+                                   placement, prior_, {}, stretch_weight, reports);
     plain.steps += guided.steps;
     return plain;
 }
@@ -65,8 +65,8 @@ GuidedMatch GuidedRounds::last_round(const TriangleMesh& from, const Similarity&
                                      reports && t == 0);
         if (t % stiffnesses > 0 && !cancelled_) {
             FlowResult settled =
-                flows_.flow(coarsest(), flows[t].mesh, options_.max_iterations, placement, prior_,
-                            {}, options_.guided.stretch_weight, false);
+                flows_.flow(flows_.coarsest(), flows[t].mesh, options_.max_iterations, placement,
+                            prior_, {}, options_.guided.stretch_weight, false);
             settled.steps += flows[t].steps;
             flows[t] = std::move(settled);
         }
@@ -134,13 +134,8 @@ GuidedMatch GuidedRounds::eigenfunction_rounds(const GuidedStart& start, const T
 }
 
 GuidedMatch GuidedRounds::match(const GuidedStart& start, bool reports) const {
-    TriangleMesh from;
-    if (start.from != nullptr) {
-        from = *start.from;
-    } else {
-        from = pyramid_.back().template_mesh;
-        from.V = start.placement.apply(from.V);
-    }
+    const TriangleMesh from =
+        start.from != nullptr ? *start.from : placed_template(pyramid_.back(), start.placement);
     GuidedMatch outcome;
     if (!start.signatures_alone && options_.guided.eigenfunction_guidance > 0) {
         outcome = eigenfunction_rounds(start, from, reports);

@@ -79,7 +79,6 @@ private:
                                          bool reports) const;
     [[nodiscard]] GuidedMatch eigenfunction_rounds(const GuidedStart& start,
                                                    const TriangleMesh& from, bool reports) const;
-    [[nodiscard]] int coarsest() const { return static_cast<int>(pyramid_.size()) - 1; }
 
     const std::vector<Level>& pyramid_;
     const LevelFlows& flows_;

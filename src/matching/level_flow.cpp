@@ -64,8 +64,7 @@ FlowResult LevelFlows::flow(int l, const TriangleMesh& moved, int iterations,
             part.joint_centre = placement.apply(part.joint_centre.transpose()).transpose();
         }
     }
-    TriangleMesh rest = level.template_mesh;  // where the joint centres are bound
-    rest.V = placement.apply(rest.V);
+    const TriangleMesh rest = placed_template(level, placement);  // the joint centres' frame
     std::shared_ptr<const EdgeLengthEnergy> stretch;
     if (stretch_weight > 0) {
         stretch = std::make_shared<EdgeLengthEnergy>(rest);

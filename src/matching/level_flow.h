@@ -42,6 +42,9 @@ public:
                                   const PointDescriptors& descriptors = {},
                                   double stretch_weight = 0, bool reports = true) const;
 
+    /// The index of the coarsest level.
+    [[nodiscard]] int coarsest() const { return count() - 1; }
+
     /// Tells options.stages (if set) that level `l` reached `stage` with `mesh`.
     void tell(int l, std::string_view stage, const TriangleMesh& mesh) const;
 

@@ -19,6 +19,7 @@
 #include "matching/prepare.h"
 #include "matching/selection.h"
 #include "matching/spectral_descriptors.h"
+#include "matching/stopwatch.h"
 #include "operators/triangle.h"
 
 namespace genflow {
@@ -126,14 +127,6 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
 
 }  // namespace
 
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
-
 bool MatchResult::doubtful() const {
     return intrinsic_disagreement && detail::is_doubtful(*intrinsic_disagreement);
 }
@@ -175,8 +168,8 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     result.alternative_starts = coarsest.alternative_starts;
     result.alternative_start = coarsest.alternative_start;
     result.swapped_limbs = coarsest.swapped_limbs;
-    result.levels.push_back(detail::level_report(pyramid.back(), coarsest.flow,
-                                                 prepared.pyramid_seconds + seconds_since(clock)));
+    result.levels.push_back(detail::level_report(
+        pyramid.back(), coarsest.flow, prepared.pyramid_seconds + detail::seconds_since(clock)));
     flows.tell(count - 1, "coarsest", coarsest.flow.mesh);
     if (spectral) {
         result.intrinsic_disagreement = detail::disagreement(*spectral, coarsest.flow.mesh.V);
@@ -194,7 +187,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
 
     result.deformed = TriangleMesh{std::move(finest.deformed), template_mesh.F};
     result.hausdorff_energy = result.levels.back().energy_end;
-    result.seconds = seconds_since(start);
+    result.seconds = detail::seconds_since(start);
     return result;
 }
 

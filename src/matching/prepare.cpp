@@ -10,14 +10,11 @@
 #include "genflow/operators/area.h"
 #include "genflow/smoothing/smoothing.h"
 #include "matching/similarity_scale.h"
+#include "matching/stopwatch.h"
 
 namespace genflow::detail {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 // The rigid starts, best first: the MatchOptions::starts.candidates best distinct rigid
 // fits, or the identity alone without alignment.
@@ -121,6 +118,12 @@ Prepared prepare(const TriangleMesh& template_mesh, const TriangleMesh& target,
         build_pyramid(template_mesh, target, smoothed_target ? *smoothed_target : target, options);
     prepared.pyramid_seconds = seconds_since(clock);
     return prepared;
+}
+
+TriangleMesh placed_template(const Level& level, const Similarity& placement) {
+    TriangleMesh placed = level.template_mesh;
+    placed.V = placement.apply(placed.V);
+    return placed;
 }
 
 }  // namespace genflow::detail

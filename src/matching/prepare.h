@@ -22,6 +22,9 @@ struct Level {
     std::vector<Eigen::Index> original_vertex;  ///< template vertex of each level vertex
 };
 
+/// The level's template at rest, placed by `placement` (a start's similarity).
+[[nodiscard]] TriangleMesh placed_template(const Level& level, const Similarity& placement);
+
 /// What the flows start from.
 struct Prepared {
     /// The rigid starts, best first (MatchOptions::starts, alignment_candidates); the identity
