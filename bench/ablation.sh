@@ -9,15 +9,22 @@
 # pairs already there are not matched again, so a long ablation can be run in parts (stop it
 # any time; run it again). They are reused whatever build made them: give a new build a new OUT.
 #
+# A stage whose candidate a match did not keep left that match as if it had not run (the rules
+# keep a candidate or leave everything as it was; tests/matching/stages_test.cpp checks it). So
+# where the default run's `details` say a stage kept nothing, the configuration without it
+# takes the default's pair as it is, and only the pairs the stage changed are matched again;
+# the table counts them ("matched"), and its time a pair is then the default's on the others.
+#
 # Usage: bench/ablation.sh [-b GENFLOW] [-d SHAPES] [-o OUT] [-n PAIRS] [-s SEED] [-j JOBS]
 #                          [-k SUBJECT_SIZE] [CONFIGURATION...]
 # Defaults: build/release/genflow, $GENFLOW_DATA/benchmarks/faust_r_train, ablation/, 100 pairs,
 # seed 1, 2 jobs, subjects of 10, every configuration (bench/ablation.sh -l lists them).
 set -euo pipefail
 
-# name | flags of `genflow benchmark` | what the configuration leaves out
+# name | flags of `genflow benchmark` | what the configuration leaves out | where the default's
+# pair is reused (`details` fields whose value says the stage kept nothing)
 configurations=(
-  "default||nothing"
+  "default||nothing|"
   "no-start-selection|--candidates 1|the rigid starts' selection flows: the best rigid fit goes on"
   "no-contenders|--contenders 1|the second shortlisted start's guided rounds"
   "no-guided-rounds|--signature-guidance 0|every guided round (signatures, eigenfunctions, stretching) and the second coarsest level's refinement and checks"
@@ -26,11 +33,12 @@ configurations=(
   "no-stiffness-candidates|--stiffness-candidates 1|the stiffer last rounds"
   "no-signature-fallback|--no-signature-fallback|a doubtful last round's rerun guided by the signatures"
   "no-second-opinion|--second-opinion-above inf|the intrinsic start (and with it the alternative starts and the coarsest limb exchange)"
-  "no-alternative-starts|--alternative-starts 0|the further intrinsic starts of a doubtful result"
-  "no-limb-swaps|--no-limb-swaps|the limb exchanges at both levels"
-  "no-refinement|--refinement-guidances 0|the second coarsest level's eigenfunction-guided flows"
-  "no-turn-back|--no-turn-back|turning back parts a fine map places turned over"
-  "no-map-fits|--map-fits 0|the fits to the fine functional map"
+  "no-alternative-starts|--alternative-starts 0|the further intrinsic starts of a doubtful result|alternative_start=0"
+  "no-limb-swaps|--no-limb-swaps|the limb exchanges at both levels|swapped_limbs=0"
+  "no-refinement|--refinement-guidances 0|the second coarsest level's eigenfunction-guided flows|refinement_guidance=0.0"
+  "no-turn-back|--no-turn-back|turning back parts a fine map places turned over|turned_parts=0"
+  "no-map-fits|--map-fits 0|the fits to the fine functional map|map_fits=0"
+  "no-reruns|--contenders 1 --stiffness-candidates 1 --second-opinion-above inf --alternative-starts 0 --no-signature-fallback|every stage that runs the guided rounds again: contenders, stiffer rounds, the fallback, the second opinion and alternative starts (and so the limb exchanges)"
   "paper|--preset paper|everything: eq. 14 over the levels from the inputs' frames"
 )
 
@@ -63,7 +71,7 @@ shift $((OPTIND - 1))
 
 if $list; then
   for entry in "${configurations[@]}"; do
-    IFS='|' read -r name flags leaves_out <<<"$entry"
+    IFS='|' read -r name flags leaves_out _ <<<"$entry"
     printf '%-24s %-30s %s\n' "$name" "${flags:-(none)}" "$leaves_out"
   done
   exit 0
@@ -84,7 +92,7 @@ fi
 wanted=("$@")
 chosen=()
 for entry in "${configurations[@]}"; do
-  IFS='|' read -r name _ _ <<<"$entry"
+  IFS='|' read -r name _ <<<"$entry"
   if [[ ${#wanted[@]} -eq 0 || " ${wanted[*]} " == *" $name "* ]]; then
     chosen+=("$entry")
   fi
@@ -98,11 +106,38 @@ done
 
 common=(--pairs "$pairs" --seed "$seed" --subject-size "$subject_size")
 
-# One configuration: its shards side by side (one thread each: the machine's cores go to the
-# shards), then the summary of all its pairs.
+# Whether the default's pair FILE (its JSON) says the stage kept nothing: every field=value of
+# UNCHANGED_WHERE is in its details.
+kept_nothing() {
+  local file=$1 unchanged_where=$2 condition
+  for condition in ${unchanged_where//,/ }; do
+    grep -q "\"${condition%%=*}\":${condition#*=}[,}]" "$file" || return 1
+  done
+}
+
+# The default's pairs in which the stage kept nothing, taken as they are into DIR; their names
+# are listed in DIR/reused.txt.
+reuse_unchanged_pairs() {
+  local dir=$1 unchanged_where=$2 file pair
+  [[ -n $unchanged_where && -d $out/default/pairs ]] || return 0
+  mkdir -p "$dir/pairs"
+  for file in "$out"/default/pairs/*.json; do
+    [[ -e $file ]] || continue
+    pair=$(basename "$file" .json)
+    if [[ ! -e $dir/pairs/$pair.json ]] && kept_nothing "$file" "$unchanged_where"; then
+      cp "$out/default/pairs/$pair.map.txt" "$dir/pairs/"
+      cp "$file" "$dir/pairs/"
+      echo "$pair" >>"$dir/reused.txt"
+    fi
+  done
+}
+
+# One configuration: the default's pairs it would not change, then its shards side by side (one
+# thread each: the machine's cores go to the shards), then the summary of all its pairs.
 run_configuration() {
-  local name=$1 flags=$2 dir=$out/$1
+  local name=$1 flags=$2 unchanged_where=$3 dir=$out/$1
   mkdir -p "$dir"
+  reuse_unchanged_pairs "$dir" "$unchanged_where"
   local shard
   local -a pids=()
   for ((shard = 0; shard < jobs; ++shard)); do
@@ -133,20 +168,24 @@ summary_field() {
 }
 
 for entry in "${chosen[@]}"; do
-  IFS='|' read -r name flags _ <<<"$entry"
+  IFS='|' read -r name flags _ unchanged_where <<<"$entry"
   echo "ablation.sh: $name ($pairs pairs, $jobs shards)" >&2
-  run_configuration "$name" "$flags"
+  run_configuration "$name" "$flags" "$unchanged_where"
 done
 
-echo "| configuration | leaves out | error ×100 | within | across | mirrored | time a pair | change |"
-echo "|---|---|---:|---:|---:|---:|---:|---:|"
+echo "| configuration | leaves out | error ×100 | within | across | mirrored | matched | time a pair | change |"
+echo "|---|---|---:|---:|---:|---:|---:|---:|---:|"
 default_error=
 if [[ -f $out/default/summary.md ]]; then
   default_error=$(summary_field "$out/default/summary.md" all 4)
 fi
 for entry in "${chosen[@]}"; do
-  IFS='|' read -r name flags leaves_out <<<"$entry"
+  IFS='|' read -r name flags leaves_out _ <<<"$entry"
   file=$out/$name/summary.md
+  reused=0
+  if [[ -f $out/$name/reused.txt ]]; then
+    reused=$(wc -l <"$out/$name/reused.txt")
+  fi
   error=$(summary_field "$file" all 4)
   within=$(summary_field "$file" "within subjects" 4)
   across=$(summary_field "$file" "across subjects" 4)
@@ -156,5 +195,5 @@ for entry in "${chosen[@]}"; do
   if [[ -n $default_error && -n $error && $name != default ]]; then
     change=$(awk -v a="$default_error" -v b="$error" 'BEGIN { printf "%+.2f", b - a }')
   fi
-  echo "| \`$name\` | $leaves_out | $error | $within | $across | $mirrored | $time | $change |"
+  echo "| \`$name\` | $leaves_out | $error | $within | $across | $mirrored | $((pairs - reused)) | $time | $change |"
 done

@@ -30,10 +30,8 @@ struct VertexMap {
 
 /// The sizes ZoomOut starts from, each giving one map, in the order a fit to them is preferred
 /// (first_kept_fit()). Its first map is the match's own correspondence seen through that many
-/// functions: few let ZoomOut set whole limbs right (the libigl elephant from rest to frame 300,
-/// its legs around the wrong way: 3.62 → 1.39 % from 10, refused from 20), more keep the
-/// match's own left and right where few functions cannot tell them (TOSCA michael standing to
-/// kneeling: from 10 the map is mirrored, from 20 it is right, 2.68 → 0.86 %).
+/// functions: few let ZoomOut set whole limbs right, more keep the match's own left and right
+/// where few functions cannot tell them (docs/measurements.md, "Fits to the fine map").
 inline constexpr std::array<Eigen::Index, 2> kFineMapFirstSizes{10, 20};
 
 class FineSpectrum {

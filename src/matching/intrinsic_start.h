@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // A placement of the template on the target that owes nothing to where the two are in space,
 // for pairs whose poses differ so much that the flow from every rigid start settles limbs on
-// the wrong ones (TOSCA michael kneeling: 15 % mean error from the best of 12 starts).
+// the wrong ones (a kneeling figure onto a standing one; docs/measurements.md).
 // - Each shape's extremities (the tips of limbs, the head, a tail) are the vertices whose
 //   average geodesic distance to the rest of the shape is the largest within a neighbourhood
 //   (as the samples of Blended Intrinsic Maps, Kim et al. 2011).

@@ -27,16 +27,13 @@ namespace genflow::detail {
                                                                      const TriangleMesh& to,
                                                                      double area_scale);
 
-/// How far the area's scale may be from the volume's before the volume's is taken. On the 49
-/// pairs of $GENFLOW_DATA's `pairs.json` and docs/eval (template against the target matched)
-/// the two agree within 2.1 % (the Sumner cat ref→02: 1.020); with noise along the normals of
-/// 0.2 % of the target's bounding-box diagonal, the area's is 1.01–1.28 times the clean one
-/// (0.5 %: 1.06–1.83) and the volume's within 0.4 %.
+/// How far the area's scale may be from the volume's before the volume's is taken: more than
+/// the two differ between clean poses of one shape (2.1 % measured), less than noise along the
+/// normals inflates the area (the volume moves far less; docs/measurements.md, "Scale").
 inline constexpr double kAreaVolumeTolerance = 0.05;
 
-/// Boundary length over √area up to which a mesh's capped volume is its shape's: TOSCA's small
-/// holes 0.11–0.17, the MakeHuman hand's open wrist 1.02–1.04 (its capped volumes' scale within
-/// 1 % of the areas'); the generated limb cut lengthwise through its middle 5.8.
+/// Boundary length over √area up to which a mesh's capped volume is its shape's: above small
+/// scanner holes and an open wrist (0.1–1.04 measured), below a shape cut through its middle.
 inline constexpr double kShortBoundary = 1.5;
 
 }  // namespace genflow::detail

@@ -2,15 +2,15 @@
 // The intrinsic (pose-blind) view of a template and a target, from the eigenbases of their
 // Laplacians, for the places where a match needs to know which part of a shape is which:
 // - choosing among rigid starts: after a flow, a flipped start can fit the target's surface as
-//   closely as the right one (the TOSCA cat head to tail, a horse, a man facing backwards), but
-//   it puts template points on target places of another shape (a tail tip on an ear): the heat
-//   kernel signatures tell;
+//   closely as the right one (head to tail, facing backwards), but it puts template points on
+//   target places of another kind (a tail tip on an ear): the heat kernel signatures tell;
 // - guiding the coarsest flow: as descriptors of d_H (PointDescriptors), heat kernel signatures
-//   keep a limb from settling on the wrong one nearby (FAUST's hanging arms on the hips);
+//   keep a limb from settling on the wrong one nearby (a hanging arm on the hip);
 // - then telling left from right: the signatures are blind to a shape's symmetries, so a left
 //   paw may still land on the right one. The low eigenfunctions are not (half of them change
 //   sign under a left–right reflection): a functional map estimated from the guided match, in
 //   which most of the shape is on the right side, carries them from the template to the target.
+// What the choices below were measured on: docs/measurements.md, "Spectral descriptors".
 #pragma once
 
 #include <Eigen/Core>
@@ -36,8 +36,7 @@ public:
     /// nearest to where `deformed` (#V×3, the template's vertices deformed) puts i. The median,
     /// not the mean: where the two surfaces differ intrinsically (limbs in contact, fused by a
     /// scanner or remesher) the signatures change far from the contact, and those points would
-    /// dominate a mean (measured on FAUST 000→001: the mean prefers the start turned front to
-    /// back, 1.89 against 2.26; the median does not, 0.20 against 0.13).
+    /// dominate a mean.
     /// \throws InvalidInput if `deformed` does not have the template's vertex count.
     [[nodiscard]] double discrepancy(const Eigen::MatrixX3d& deformed) const;
 
@@ -74,28 +73,19 @@ public:
     /// keeps the basis orthonormal), and the correspondence becomes that of nearest neighbours
     /// in the (√λ-divided) embedding. The orthogonal fit follows the majority: a limb on the
     /// wrong side is outvoted by the rest of the shape. The descriptors are scaled so that the
-    /// target's root-mean-square spread is `length`. (Measured, full pairs of $GENFLOW_DATA, h1:
-    /// nearest neighbours in the undivided embedding broke the makehuman body's map from 12
-    /// functions on, 1.9 → 2.7 % mean error; divided, 16, 20 and 24 functions give 1.2, 1.1
-    /// and 1.0 %.)
+    /// target's root-mean-square spread is `length`.
     ///
     /// Where ZoomOut ends depends on where it starts: from a correspondence with whole parts
-    /// misplaced it ends either near the right map or near a wrong one (the TOSCA cat's
-    /// coarsest match: 2.5 % or 7–11 % of the diagonal at the template's coarse vertices),
-    /// and which one changed with the start's size and with a vertex more or less in the
-    /// coarse meshes. So it runs from every placement given and from 4, 6, 8 and 10 functions,
-    /// and keeps the map whose own correspondence disagrees least with the target, as a match's
-    /// intrinsic disagreement does: the median discrepancy of the heat kernel signatures over
-    /// its final correspondence, divided by how nearly orthogonal the map is (its mean singular
-    /// value, map_consistency()) less the mean distance, over the diagonal, by which it moves
-    /// the points of the placement's correspondence. Orthogonality alone does not tell the
-    /// maps apart: on the cat 0.87–0.88 for the right maps, 0.83–0.85 for the wrong ones, but
-    /// on the libigl arm turned over (a random rotation of the target) the map twisted half a
-    /// turn about the arm's axis was 0.004 ahead by orthogonality less motion, and its match
-    /// ended 9.6 % off; rated with the signatures, eight random similarities of that target
-    /// all end 0.9–1.8 % off. The motion term stays for shapes whose
-    /// symmetry the signatures cannot see: on the generated limb the map flipped about it was
-    /// 0.005 more orthogonal but moved the points 3× as far (0.07 against 0.02–0.03).
+    /// misplaced it ends either near the right map or near a wrong one, and which one can change
+    /// with a vertex more or less in the coarse meshes. So it runs from every placement given
+    /// and from 4, 6, 8 and 10 functions, and keeps the map whose own correspondence disagrees
+    /// least with the target, as a match's intrinsic disagreement does: the median discrepancy
+    /// of the heat kernel signatures over its final correspondence, divided by how nearly
+    /// orthogonal the map is (its mean singular value, map_consistency()) less the mean
+    /// distance, over the diagonal, by which it moves the points of the placement's
+    /// correspondence. Orthogonality alone does not tell a map twisted half a turn about a
+    /// limb's axis from the right one; the signatures do. The motion term stays for shapes whose
+    /// symmetry the signatures cannot see: a map flipped about it moves the points farther.
     /// \throws InvalidInput if `placements` is empty or a placement does not have the template's
     ///         vertex count.
     [[nodiscard]] PointDescriptors eigenfunction_descriptors(

@@ -43,10 +43,9 @@ double agreement(const Eigen::MatrixXd& from_turning, const IntrinsicShape& from
 }
 
 // Two limbs are counterparts (a left one and a right one) if their extremities' average
-// geodesic distances agree within this fraction of the larger: 0.2–2.2 % on the four pairs
-// swapped in docs/eval's results (the TOSCA cat's hind feet 0.705 and 0.721), 3.4 % for TOSCA
-// michael's hands, 16 % for the libigl elephant's foremost extremity and one on its side
-// (0.589 and 0.497), which a tolerance of 20 % let be exchanged.
+// geodesic distances agree within this fraction of the larger: above what a left and a right
+// limb differ by (up to 3.4 % measured), below what distinct limbs of one shape differ by (from
+// 16 %; docs/measurements.md, "Swapped limbs").
 constexpr double kCounterpartTolerance = 0.1;
 
 bool counterparts(const IntrinsicShape& shape, std::size_t a, std::size_t b) {

@@ -1,19 +1,15 @@
 // SPDX-License-Identifier: MIT
 // Limbs a match put on their mirror images, and which ones.
 //
-// A template whose stride puts its left leg where the target has its right one (TOSCA cat
-// 4 → 0, the Sumner cat 02 → 05, the libigl elephant's frame 100 → 300) is matched with the
-// two exchanged: each lands on the nearest surface, and nothing the match compares tells,
+// A template whose stride puts its left leg where the target has its right one is matched with
+// the two exchanged: each lands on the nearest surface, and nothing the match compares tells,
 // since the heat kernel signatures and the geodesic distances of a left limb and of a right one
 // agree. What does tell is which way each extremity lies from the rest of the body: the
 // turning function of a pair of extremities (intrinsic_shape.h) changes sign under a reflection,
 // so where the match put a limb on its mirror image, the functions of every pair with its
-// extremity disagree with the target's over most of the body. Measured with a prototype at full
-// resolution on those three results: the functions' mean correlation with the target's,
-// through the match, 0.38, 0.32 and 0.18; through the ground truth 0.67, 0.60 and 0.82; and
-// exchanging the images of the pair of extremities that raises it most raised it to 0.50, 0.48
-// and 0.56 (then 0.64, with the elephant's second pair), each time exchanging the two limbs the
-// match had swapped.
+// extremity disagree with the target's over most of the body, and exchanging the images of the
+// pair of extremities that raises their agreement most exchanges the two limbs the match had
+// swapped (docs/measurements.md, "Swapped limbs").
 #pragma once
 
 #include <Eigen/Core>

@@ -165,8 +165,8 @@ Eigen::MatrixX3d turned_back(const TriangleMesh& template_rest, const Eigen::Mat
         };
         // Per vertex of the region, the share that takes it nearest to where the map puts it
         // (of 0, 1/20, ..., 1), smoothed over the region (1 on the part, 0 outside the region).
-        // The short way round: on michael the long way fitted the map's places 10–15 % closer
-        // but ended worse (0.51 % mean error against 0.44 %).
+        // The short way round: the long way fits the map's places closer but ends farther from
+        // the truth (docs/measurements.md, "Turned parts").
         constexpr int kShares = 20;
         std::vector<char> role(n, 0);  // 0 outside, 1 region, 2 part
         std::vector<double> fitted(n, 0);

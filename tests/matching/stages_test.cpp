@@ -3,6 +3,7 @@
 // level (LevelFlows), the guided rounds, the coarsest level and the finer levels.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
 #include <limits>
 #include <utility>
@@ -231,6 +232,48 @@ TEST(FinerLevels, CarryTheCoarsestResultToTheTemplatesResolution) {
     EXPECT_TRUE(cancelled);
     EXPECT_LT(partial.levels.size(), count - 1);
     EXPECT_EQ(partial.deformed.rows(), limb.pair.template_mesh.V.rows());
+}
+
+// A finer-level stage that kept nothing left the match as if it had not run (its rules keep a
+// candidate or leave everything as it was), which is what lets bench/ablation.sh take the
+// default's result for every pair where the stage kept nothing.
+TEST(FinerLevels, AStageThatKeptNothingLeavesTheMatchAsItWas) {
+    const PreparedLimb limb;
+    const SpectralDescriptors analysis = limb.analysis();
+    const LevelFlows flows(limb.prepared.pyramid, limb.options, limb.diagonal, limb.cancelled);
+    const CoarsestMatch coarsest = match_coarsest_level(
+        limb.prepared, flows, &analysis, limb.options, limb.diagonal, limb.cancelled);
+    const auto finer_match = [&](const MatchOptions& options) {
+        const LevelFlows level_flows(limb.prepared.pyramid, options, limb.diagonal, limb.cancelled);
+        FinerLevels finer(limb.prepared.pyramid, level_flows, &analysis, options, limb.diagonal,
+                          limb.cancelled, coarsest.start, coarsest.stretch_weight);
+        return finer.match(coarsest.flow.mesh.V);
+    };
+    const FinerMatch all = finer_match(limb.options);
+    // Each stage: whether it kept anything in the match with all of them, and its switch.
+    struct Stage {
+        const char* name;
+        bool kept;
+        bool* enabled;
+    };
+    MatchOptions options = limb.options;
+    const std::array<Stage, 4> stages{{
+        {"refinement", all.refinement_guidance != 0, &options.refinement.enabled},
+        {"turn-back", all.turned_parts != 0, &options.turn_back.enabled},
+        {"map fits", all.map_fits != 0, &options.map_fit.enabled},
+        {"limb swaps", all.swapped_limbs != 0, &options.limb_swaps.enabled},
+    }};
+    int checked = 0;
+    for (const Stage& stage : stages) {
+        if (stage.kept) {
+            continue;
+        }
+        *stage.enabled = false;
+        EXPECT_EQ(finer_match(options).deformed, all.deformed) << stage.name;
+        *stage.enabled = true;
+        ++checked;
+    }
+    EXPECT_GE(checked, 2);
 }
 
 }  // namespace

@@ -27,8 +27,8 @@ struct PseudoHausdorffOptions {
     /// within an adaptive radius, chosen so that the neglected part of every sum is at most
     /// τ times the sum. Then the relative error of d_H + ε is at most τ/(2α(1 − τ)).
     /// The radius is the smaller of docs/formulas.md §8's (all weight assumed at the radius) and a
-    /// shell bound from how much weight the grid holds around the point (28 % fewer terms
-    /// on the aligned TOSCA cat pair at τ = 1e-4, same guarantee).
+    /// shell bound from how much weight the grid holds around the point (fewer terms, the
+    /// same guarantee).
     /// 0 evaluates the exact O(P·Q) sums.
     double truncation = 1e-4;
     HausdorffWeights weights = HausdorffWeights::Paper;

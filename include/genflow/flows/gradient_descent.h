@@ -33,10 +33,8 @@ struct DescentOptions {
     bool implicit = false;
     /// Where τ starts after a step that had to backtrack (its first τ refused): at twice the τ
     /// it took, as after any step (docs/formulas.md §9: min(2 τ_previous, cap)), or, false, at that
-    /// τ itself. Twice over it overshoots again: on the TOSCA cat's coarsest flows 1.84 trials (d_H
-    /// evaluations) per step with doubling, 1.49 without; the evaluation tables 14–45 % faster (30
-    /// % in all) at means within ±0.05 % (docs/eval/results.md, "Holding the step after
-    /// backtracking").
+    /// τ itself. Twice over it overshoots again: a quarter more trials (d_H evaluations) per step
+    /// for the same results (docs/eval/results.md, "Holding the step after backtracking").
     bool double_after_backtracking = false;
     /// Called after every accepted step; return false to stop (status Cancelled). Optional.
     std::function<bool(const FlowProgress&)> progress = {};

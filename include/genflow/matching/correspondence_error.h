@@ -16,11 +16,9 @@ namespace genflow {
 /// mesh.
 struct StrandedOptions {
     /// A vertex put within this distance of its ground truth, along the surface, is never
-    /// stranded: a limb's reach, well above a finger's width. (Measured with h1 on the full
-    /// pairs of $GENFLOW_DATA: at 5 % of the diagonal, 3086 vertices of TOSCA michael's
-    /// fingers, each put on the neighbouring finger 0.4–3 % from where it belongs, counted as
-    /// stranded, and 538 of the cat's; at 10 %, 9 where the thighs touch and 57. Those fingers
-    /// belong to hands turned palm for back: CorrespondenceError::reversed shows such parts.)
+    /// stranded: a limb's reach, well above a finger's width, so that a finger put on its
+    /// neighbour counts in the errors, not as stranded (docs/measurements.md, "Stranded
+    /// vertices"). CorrespondenceError::reversed shows such parts.
     double length = 0.1;
     /// Farther than `length`, it is stranded when the path along the surface from its ground
     /// truth to where it was put is more than this many times the straight distance: it sits
@@ -32,9 +30,6 @@ struct StrandedOptions {
     /// belongs is at its place and never stranded: where two parts of the ground truth touch
     /// (a fingertip on the next finger, the thighs), a vertex a fraction of an edge from its
     /// own place may be nearer the other part, which the sampling cannot tell from its own.
-    /// (Measured with h1 on the full pairs of $GENFLOW_DATA: TOSCA michael 0→1's only two
-    /// stranded vertices, 0.15 and 0.10 % of the diagonal from where they belong, 0.05 and
-    /// 0.004 % from a finger that touches theirs.)
     double placement_tolerance = 1;
 };
 

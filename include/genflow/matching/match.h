@@ -64,12 +64,9 @@ struct MatchStage {
     const std::vector<Eigen::Index>* template_vertex = nullptr;
 };
 
-/// Above this intrinsic disagreement (MatchResult::intrinsic_disagreement) a match is doubtful.
-/// Measured with h1 on the 12 pairs of $GENFLOW_DATA/pairs.json and the 17 of
-/// docs/eval/other_poses.json: 0.045–0.24 on every match below 3.7 % mean error; 0.39 and 0.57
-/// on the one that failed (TOSCA michael kneeling, 15 % off, an arm on a leg; two
-/// simplifications of its target one vertex apart). With the articulated prior, 0.09–0.31 on
-/// its 11 results, up to 4 % off.
+/// Above this intrinsic disagreement (MatchResult::intrinsic_disagreement) a match is doubtful:
+/// above what right matches measure (up to 0.31), below what a match with an arm on a leg did
+/// (0.39; docs/measurements.md, "Doubtful matches").
 inline constexpr double kDoubtfulDisagreement = 0.35;
 
 /// The coarsest level's rigid starts (src/matching/coarsest_level.h): alignment hypotheses,

@@ -22,7 +22,7 @@ struct CoarseMesh {
 /// above the target; boundaries are kept. Unreferenced fine vertices are dropped, and so are
 /// both faces of a fin (two faces on the same three vertices), which meshoptimizer leaves on
 /// rare occasions. The result can still have a few non-manifold edges where the input has thin
-/// features (5 of 21K edges on the TOSCA cat at 7K vertices, none at 2K); every operator of
+/// features (a few in 10⁴ edges at intermediate resolutions); every operator of
 /// genflow accepts them. With target_vertices ≥ the vertex count, only the clean-up happens.
 /// \throws InvalidInput if the mesh has no face, bad indices or non-finite coordinates, or
 ///         target_vertices < 4.

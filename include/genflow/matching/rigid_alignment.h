@@ -33,8 +33,8 @@ struct RigidAlignmentOptions {
     /// A flow stops when d_H fell by less than this fraction over 10 iterations.
     double stagnation_tolerance = 1e-3;
     /// Exponent of the pseudo-Hausdorff distance that is minimised. Low: a rigid fit between
-    /// poses should follow the bulk of the shape, not the limbs that moved (measured on the
-    /// small FAUST pair: α = 2 ranks the right orientation first, α = 8 third).
+    /// poses should follow the bulk of the shape, not the limbs that moved (with α = 8 the right
+    /// orientation ranked lower; docs/measurements.md, "Rigid starts").
     double alpha = 2;
     /// Allow a uniform scaling, s = √(area of fixed / area of moving): area, unlike size or
     /// principal radii, does not change with the pose of a near-isometric shape.
@@ -57,9 +57,9 @@ struct RigidAlignment {
 /// with the pose (a cat stretching) are still aligned.
 ///
 /// The lowest d_H is not always the right pose: between strongly articulated poses a rigid fit
-/// can prefer a flipped orientation (measured on the TOSCA cat pair: d_H 26 flipped against 54
-/// for the ground-truth rigid fit). rigid_alignment_candidates() therefore returns the distinct
-/// optima, so that a non-rigid flow can decide; align_rigidly() returns the first.
+/// can prefer a flipped orientation (half the d_H of the right one, measured).
+/// rigid_alignment_candidates() therefore returns the distinct optima, so that a non-rigid flow
+/// can decide; align_rigidly() returns the first.
 ///
 /// \throws InvalidInput if a mesh has no face, zero area, bad indices or non-finite
 ///         coordinates, or the options are out of range (samples < 8, iterations < 0,

@@ -42,9 +42,8 @@ struct SpectralMapOptions {
     /// Meshes with more vertices are analysed coarsened to about this many (coarsen()): the
     /// eigen-solve and the last search grow with #V, and 100 eigenfunctions resolve no finer.
     /// Each vertex of `from` then goes where the map puts the corner of its coarse face
-    /// (embed()) that it lies nearest to. Measured on FAUST_r (5,000 vertices, the 100 pairs of
-    /// docs/benchmarks.md): coarsened to 2,000 the map's mean error was 12.1 × 100 with 9 pairs
-    /// mirrored, against 10.9 and 4 at full resolution.
+    /// (embed()) that it lies nearest to. Coarsening a 5,000-vertex human to 2,000 cost
+    /// accuracy and orientation (docs/benchmarks.md), so the default analyses such meshes whole.
     Eigen::Index vertices = 20000;
 };
 
@@ -64,10 +63,8 @@ struct SpectralMap {
     Eigen::MatrixXd functional_map;
     /// Σ‖C O_to − O_from C‖² / Σ‖C O_to + O_from C‖² over the orientation operators, C the
     /// map fitted to target_vertex (orientation_size functions): below 1 the map preserves the
-    /// orientation, above 1 it reverses it. Measured on ten FAUST_r pairs: 0.06–0.4 for right
-    /// maps, 1.1–5.2 for maps with a side reflected. It says nothing of other errors: of the
-    /// kept maps of docs/benchmarks.md's 100 pairs, the 4 closer to the mirrored ground truth
-    /// (limbs scattered over both sides) had 0.29–1.0.
+    /// orientation, above 1 it reverses it (docs/benchmarks.md, "Orientation"). It says nothing
+    /// of other errors: a map with limbs scattered over both sides can score below 1.
     double orientation_ratio = 0;
     /// The basis size of the kept map's first estimate.
     Eigen::Index basis_size = 0;

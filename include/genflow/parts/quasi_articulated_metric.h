@@ -23,8 +23,8 @@ struct QuasiArticulatedOptions {
     /// The residual (the motion no part's rotation spans) is measured in H1 with λ = (k·h)²,
     /// k = smoothing_length and h the rest template's mean edge length, so that it moves
     /// smoothly (SubspaceMetric's base); 0 measures it in L2, as the paper does. Not used by
-    /// the matcher: on the rigged pairs of $GENFLOW_DATA (mean error, 0 → 2 → 5) the hand went
-    /// 3.1 → 3.9 → 7.1 % and the arm 4.1 → 3.9 → 10.1 %.
+    /// the matcher: longer lengths matched rigged pairs worse (docs/measurements.md,
+    /// "Articulated prior").
     double smoothing_length = 0;
     MassType mass = MassType::Barycentric;
 };
