@@ -21,30 +21,23 @@ namespace {
 // The shapes are analysed at about this many vertices (all-pairs geodesics: 8 MB each).
 constexpr Eigen::Index kVertices = 1000;
 
-// Lengths are in units of √area, so that nothing depends on the shapes' scale. The measures
-// below are on the coarsest levels of the 29 pairs of $GENFLOW_DATA (pairs.json and
-// docs/eval/other_poses.json): the mean distance of the template's vertices, where the chosen
-// map puts them, to their true places, over the target's diagonal.
+// Lengths are in units of √area, so that nothing depends on the shapes' scale. What the
+// constants below were measured on: docs/measurements.md, "Intrinsic start".
 
 // At most this many extremities per shape (the farthest on average): the clique search stays
 // small on shapes with many bumps (a noisy scan).
 constexpr std::size_t kMaxExtremities = 16;
 
 // The functional map: 20 eigenfunctions, Gaussians of three widths around each landmark, and
-// the commutativity weight, for unit-area shapes (eigenvalues times the area). Measured with a
-// prototype, weights 1e-2, 1e-4, 1e-6 and 1e-8 gave 12, 6, 4 and 4 % on TOSCA michael kneeling,
-// 15, 14, 4 and 4 % on FAUST 000→001, 6.5, 3.8, 2.1 and 2.3 % on the makehuman body.
+// the commutativity weight, for unit-area shapes (eigenvalues times the area): larger weights
+// made the maps worse, smaller ones no better.
 constexpr Eigen::Index kFunctions = 20;
 constexpr std::array<double, 3> kWidths{0.15, 0.3, 0.6};
 constexpr double kCommutativity = 1e-6;
 // Gaussians of the distance are blind to a reflection: on a shape with one (a human's left and
-// right), the map fitted to them may follow it in places and turn the surface over there
-// (FAUST 000→001: orientation 0.05, where the right map's is 0.5). The turning functions of
-// pairs of landmarks (turning_functions()) change sign under it and join the Gaussians with
-// this weight. Median and mean: 0 3.4 and 4.8 %, 0.1 3.5 and 4.7 %, 0.2 3.1 and 4.6 %, 1
-// worse (6.1 % on average: the functions are noisy near the landmarks). At 0.2, 1.9–4.5 % on
-// 25 pairs, 8.7 % on the small TOSCA cat, 11 % on the libigl arm's pose 2 and 13 and 26 % on
-// the libigl elephant's frames 200 and 300.
+// right), the map fitted to them may follow it in places and turn the surface over there. The
+// turning functions of pairs of landmarks (turning_functions()) change sign under it and join
+// the Gaussians with this weight: more makes the map noisy near the landmarks.
 constexpr double kTurningWeight = 0.2;
 
 }  // namespace

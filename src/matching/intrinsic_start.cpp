@@ -27,9 +27,8 @@ constexpr double kTolerance = 0.2;
 constexpr long kCliqueSearchSteps = 200000;
 // The most consistent landmark sets whose maps are compared by orientation, and how much less
 // well than the best a map may keep it and still be kept for being more consistent: a
-// quadruped's sets turned head to tail and left to right keep it as well as the right one
-// (the Sumner horse: 0.78 and 0.77) and are less consistent (distances 1.4 times as far off).
-// Margins of 0.05, 0.1 and 0.2: 4.81, 4.78 and 4.86 % on average.
+// quadruped's sets turned head to tail and left to right keep it as well as the right one and
+// are less consistent (docs/measurements.md, "Intrinsic start").
 constexpr std::size_t kCandidates = 8;
 constexpr double kOrientationMargin = 0.1;
 
@@ -120,8 +119,7 @@ private:
 
 // The landmark sets to try, best first: the largest sets (at least 3) of extremity pairs whose
 // averages agree and whose mutual geodesic distances agree, ranked by the mean disagreement of
-// their distances. (Sets one pair smaller as well let a wrong map in: FAUST 000→001, 4.1 % with
-// the largest only, 39 % with them.)
+// their distances. (Sets one pair smaller as well let wrong maps in.)
 std::vector<LandmarkSet> landmark_candidates(const IntrinsicShape& from, const IntrinsicShape& to) {
     LandmarkSet nodes;
     for (std::size_t a = 0; a < from.extremities.size(); ++a) {
@@ -280,8 +278,8 @@ std::optional<IntrinsicStart> start_from_map(const TriangleMesh& template_mesh,
     }
     // The scale from the areas, which bending keeps (as the rigid starts'), and the rotation
     // and translation that fit the placement best at that scale. A least-squares similarity
-    // would shrink the template to fit a pose folded onto itself: the kneeling TOSCA michael
-    // took the standing one at 0.52 of its size.
+    // would shrink the template to fit a pose folded onto itself (a kneeling figure took a
+    // standing one at half its size).
     const double scale = to.unit / from.unit;
     const Eigen::Matrix4d fit =
         Eigen::umeyama(scale * template_mesh.V.transpose(), start.placement.transpose(), false);

@@ -69,10 +69,9 @@ std::vector<Level> build_pyramid(const TriangleMesh& template_mesh, const Triang
         }
         // The target coarsened by the template's factor, but to no fewer than half the
         // template level's vertices (or all the target has): a target ten times sparser than
-        // the template had a tenth of its vertices on every level (the Sumner horse's coarsest
-        // 108 against 535), too few for its signatures and eigenfunctions (docs/eval/results.md,
-        // "Sparse and noisy targets"). Equal counts on every pair instead changed the near tie of
-        // TOSCA michael 1->2's landmark sets (22.5 % off).
+        // the template had a tenth of its vertices on every level, too few for its signatures
+        // and eigenfunctions (docs/eval/results.md, "Sparse and noisy targets"); equal counts on
+        // every pair instead changed near ties of the landmark sets.
         const double ratio = static_cast<double>(coarser.template_mesh.V.rows()) /
                              static_cast<double>(template_mesh.V.rows());
         const Eigen::Index target_size = std::min(
