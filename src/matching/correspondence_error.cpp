@@ -22,10 +22,9 @@ namespace genflow {
 
 namespace {
 
-// Landmarks for the path bounds, each a Dijkstra over the whole shape. Measured on TOSCA
-// michael (52565 vertices, two cores), a good match (9 vertices stranded) and one gone wrong
-// (11820): 1.9 and 126 s with a bounded Dijkstra from every vertex; with 16 landmarks 0.9 and
-// 7.7 s, 32 0.7 and 6.3 s, 64 1.1 and 3.2 s.
+// Landmarks for the path bounds, each a Dijkstra over the whole shape: more bound more pairs
+// without a search but cost a Dijkstra each; 32 was the fastest on a good match and about as
+// fast as 64 on one gone wrong (docs/benchmarks.md, "Stranded vertices").
 constexpr int kLandmarks = 32;
 
 using detail::Chord;

@@ -115,8 +115,8 @@ void SubspaceMetric::update(const TriangleMesh& mesh) {
     // Gram matrix drops the directions already spanned (eigenvalues below 1e-8 of the block's own
     // largest before projection) and orthonormalizes the rest. It runs on the coefficients
     // Q_k = F T_k, where every inner product is one of C: (B Q_k)ᵀ F S = T_kᵀ C S. Projecting
-    // the 3n-row fields instead cost four products of O(n·m²): the articulated FAUST (76
-    // fields) spent 65 % of its match there, 50.9 s in all against 24.9 s now. C's rounding,
+    // the 3n-row fields instead costs four products of O(n·m²), most of a match with many
+    // fields (docs/benchmarks.md, "Subspace metric"). C's rounding,
     // magnified by nearly repeated fields, leaves the blocks of a 17-part chain orthonormal to
     // 3e-10 (tests/matching/matching_test.cpp).
     std::vector<CoefficientBlock> coefficients;

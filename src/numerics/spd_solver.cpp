@@ -68,11 +68,8 @@ void SpdSolver::compute(const Eigen::SparseMatrix<double>& A, const char* caller
 #ifdef GENFLOW_HAS_CHOLMOD
         // CHOLMOD chooses the supernodal factorization by its flop count alone, but that one
         // hands many small blocks to the BLAS, whose threads then contend with the flows run
-        // side by side (a quarter of the generated limb's match spent spinning in OpenBLAS).
-        // Measured on whole matches (2 cores): simplicial is faster up to 52K rows (h1 michael's
-        // 52.6K-vertex level 3.2 -> 2.3 s, the quasi-isometric 39K-row one 1.3 -> 1.0 s, the
-        // limb's match 9.5 -> 7.3 s), supernodal from 84K (quasi-isometric cat 2.6 against
-        // 3.5 s, michael's 158K rows 5.1 against 7.1 s).
+        // side by side. Simplicial is faster on whole matches up to 52K rows, supernodal from
+        // 84K (docs/benchmarks.md, "Sparse factorization").
         impl_->solver.setMode(compressed.rows() < kSimplicialRows ? Eigen::CholmodSimplicialLLt
                                                                   : Eigen::CholmodAuto);
 #endif
