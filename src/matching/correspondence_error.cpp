@@ -23,8 +23,8 @@ namespace genflow {
 namespace {
 
 // Landmarks for the path bounds, each a Dijkstra over the whole shape: more bound more pairs
-// without a search but cost a Dijkstra each; 32 was the fastest on a good match and about as
-// fast as 64 on one gone wrong (docs/benchmarks.md, "Stranded vertices").
+// without a search but cost a Dijkstra each. 32 was the fastest on a good match, the common
+// case; 64 halved the time only on a match gone wrong (docs/benchmarks.md, "Stranded vertices").
 constexpr int kLandmarks = 32;
 
 using detail::Chord;
