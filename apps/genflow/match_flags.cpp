@@ -138,9 +138,9 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
     command
         .add_option("--alternative-starts-above",
                     flags.match.second_opinion.alternative_starts_above,
-                    "Only a second opinion's result that disagrees more than this with the "
-                    "target is matched again from the alternative starts (a doubtful one always "
-                    "is; 0: every one; inf: none)")
+                    "A result that disagrees more than this with the target, from any start, "
+                    "is matched again from the alternative starts (a doubtful one always is; 0: "
+                    "every one; inf: only doubtful ones)")
         ->check(non_negative_or_infinity())
         ->capture_default_str();
     command.add_flag("--no-limb-swaps", flags.no_limb_swaps,

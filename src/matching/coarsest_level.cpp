@@ -67,12 +67,12 @@ public:
         }
     }
 
-    // A doubtful result, or one from the second opinion that disagrees more than right matches
-    // do, matched again from the intrinsic starts of the next landmark sets, side by side; the
-    // one that disagrees least is kept (MatchOptions::second_opinion.alternative_starts).
+    // A result that disagrees more than right matches do, from a rigid start or the second
+    // opinion, matched again from the intrinsic starts of the next landmark sets, side by side;
+    // the one that disagrees least is kept (MatchOptions::second_opinion.alternative_starts).
     void try_alternative_starts() {
         if (cancelled_ || intrinsic_.size() <= 1 ||
-            !needs_alternative_starts(outcomes_[kept_].disagreement, match_.second_opinion,
+            !needs_alternative_starts(outcomes_[kept_].disagreement,
                                       options_.second_opinion.alternative_starts_above)) {
             return;
         }

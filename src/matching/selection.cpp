@@ -77,10 +77,8 @@ bool needs_second_opinion(double disagreement, double second_opinion_above) {
     return second_opinion_above > 0 && disagreement > second_opinion_above;
 }
 
-bool needs_alternative_starts(double disagreement, bool from_second_opinion,
-                              double alternative_starts_above) {
-    return is_doubtful(disagreement) ||
-           (from_second_opinion && disagreement > alternative_starts_above);
+bool needs_alternative_starts(double disagreement, double alternative_starts_above) {
+    return is_doubtful(disagreement) || disagreement > alternative_starts_above;
 }
 
 bool keeps_limb_exchange(const LimbExchange& exchange) {

@@ -82,10 +82,9 @@ inline constexpr double kIntrinsicTurning = 0.05;
 [[nodiscard]] bool needs_second_opinion(double disagreement, double second_opinion_above);
 
 /// Whether a result is matched again from the next landmark sets' intrinsic starts
-/// (MatchOptions::second_opinion.alternative_starts): it is doubtful, or came from the second
-/// opinion and disagrees more than `alternative_starts_above`.
-[[nodiscard]] bool needs_alternative_starts(double disagreement, bool from_second_opinion,
-                                            double alternative_starts_above);
+/// (MatchOptions::second_opinion.alternative_starts): it is doubtful, or disagrees more than
+/// `alternative_starts_above`, whichever start it came from.
+[[nodiscard]] bool needs_alternative_starts(double disagreement, double alternative_starts_above);
 
 /// How much an exchange of two limbs' places must raise the turning functions' agreement to
 /// be tried, and the match from it to be kept (MatchOptions::limb_swaps).

@@ -58,11 +58,12 @@ TEST(Selection, DoubtfulResultsAskForTheFallbackAndTheOtherStarts) {
     EXPECT_FALSE(needs_second_opinion(10, std::numeric_limits<double>::infinity()));
     EXPECT_TRUE(needs_second_opinion(0.4, 0.35));
     EXPECT_FALSE(needs_second_opinion(0.3, 0.35));
-    // The next landmark sets: doubtful, or from the second opinion above its own bound.
-    EXPECT_TRUE(needs_alternative_starts(0.5, false, 0.15));
-    EXPECT_FALSE(needs_alternative_starts(0.2, false, 0.15));
-    EXPECT_TRUE(needs_alternative_starts(0.2, true, 0.15));
-    EXPECT_FALSE(needs_alternative_starts(0.1, true, 0.15));
+    // The next landmark sets: above their own bound, or doubtful even where the bound is higher.
+    EXPECT_TRUE(needs_alternative_starts(0.2, 0.15));
+    EXPECT_FALSE(needs_alternative_starts(0.1, 0.15));
+    EXPECT_FALSE(needs_alternative_starts(0.15, 0.15));
+    EXPECT_TRUE(needs_alternative_starts(0.5, std::numeric_limits<double>::infinity()));
+    EXPECT_FALSE(needs_alternative_starts(0.3, std::numeric_limits<double>::infinity()));
 }
 
 // The match from exchanged limbs is kept only if every condition holds: agreement as a right

@@ -122,10 +122,11 @@ struct SecondOpinionOptions {
     /// 0: asked of every match, side by side with the rigid starts; above 0, only of results
     /// that disagree more than this, after them.
     double above = 0;
-    /// A doubtful result, or one from the second opinion above `alternative_starts_above`, is
-    /// matched again from the intrinsic starts of up to this many further landmark sets; the
-    /// least disagreeing is kept (0 = none).
+    /// A result that disagrees more than `alternative_starts_above`, whichever start it came
+    /// from, is matched again from the intrinsic starts of up to this many further landmark
+    /// sets; the least disagreeing is kept (0 = none).
     int alternative_starts = 3;
+    /// Below it a result stands: right matches disagree this little (0 = every result).
     double alternative_starts_above = 0.15;
 };
 
