@@ -193,12 +193,8 @@ nlohmann::json run_pair(const Shape& from, const Shape& to, bool within,
     if (!map_file.empty()) {
         write_correspondences(map_file, map);
     }
-    std::vector<SurfacePoint> mapped;
-    for (const Eigen::Index v : from.reference) {
-        mapped.push_back(map[static_cast<std::size_t>(v)]);
-    }
     const GeodesicErrorMeasure measure(to.mesh);
-    const GeodesicErrors errors = measure.errors(mapped, to.reference);
+    const GeodesicErrors errors = measure.errors_at(map, from.reference, to.reference);
     nlohmann::json row = {{"from", from.name},
                           {"to", to.name},
                           {"within_subject", within},
@@ -212,7 +208,8 @@ nlohmann::json run_pair(const Shape& from, const Shape& to, bool within,
         for (std::size_t k = 0; k < mirrored.size(); ++k) {
             mirrored[k] = to.reference[static_cast<std::size_t>(symmetry.mirror[k])];
         }
-        const double mirror_mean = mean_of(measure.errors(mapped, mirrored).to_vertex);
+        const double mirror_mean =
+            mean_of(measure.errors_at(map, from.reference, mirrored).to_vertex);
         row["mean_against_mirror"] = mirror_mean;
         row["mirrored"] = mirror_mean < row["mean"].get<double>();
     }

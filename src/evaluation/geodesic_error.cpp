@@ -113,4 +113,20 @@ GeodesicErrors GeodesicErrorMeasure::errors(const std::vector<SurfacePoint>& map
     return result;
 }
 
+GeodesicErrors GeodesicErrorMeasure::errors_at(const std::vector<SurfacePoint>& map,
+                                               const std::vector<Eigen::Index>& from_reference,
+                                               const std::vector<Eigen::Index>& truth) const {
+    std::vector<SurfacePoint> mapped;
+    mapped.reserve(from_reference.size());
+    for (const Eigen::Index v : from_reference) {
+        if (v < 0 || static_cast<std::size_t>(v) >= map.size()) {
+            throw InvalidInput("GeodesicErrorMeasure::errors_at: template vertex " +
+                               std::to_string(v) + " is out of range of a map of " +
+                               std::to_string(map.size()) + " vertices");
+        }
+        mapped.push_back(map[static_cast<std::size_t>(v)]);
+    }
+    return errors(mapped, truth);
+}
+
 }  // namespace genflow

@@ -64,6 +64,21 @@ TEST(GeodesicError, AnotherComponentCountsAsOneUnit) {
     EXPECT_EQ(errors.to_point(0), 1.0);
 }
 
+// A map of every template vertex measured at the reference points only: template vertices 2
+// and 0 are the reference points, and the map's entry for vertex 1 is never read.
+TEST(GeodesicError, MeasuresAWholeMapAtTheTemplatesReferenceVertices) {
+    const TriangleMesh grid = make_grid(10, 2.0);
+    const GeodesicErrorMeasure measure(grid);
+    const std::vector<SurfacePoint> map{on_edge(grid, 7, 8, 0), on_edge(grid, 1, 2, 0.5),
+                                        on_edge(grid, 4, 5, 0)};
+    const GeodesicErrors errors = measure.errors_at(map, {2, 0}, {0, 7});
+    ASSERT_EQ(errors.to_vertex.size(), 2);
+    EXPECT_NEAR(errors.to_vertex(0), 0.8 / 2, 1e-12);
+    EXPECT_EQ(errors.to_vertex(1), 0);
+    EXPECT_THROW((void)measure.errors_at(map, {3}, {0}), InvalidInput);
+    EXPECT_THROW((void)measure.errors_at(map, {-1}, {0}), InvalidInput);
+}
+
 TEST(GeodesicError, RefusesMismatchedOrOutOfRangeInput) {
     const TriangleMesh grid = make_grid(2, 1.0);
     const GeodesicErrorMeasure measure(grid);

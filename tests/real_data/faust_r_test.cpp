@@ -46,12 +46,10 @@ std::optional<BenchmarkShape> faust_r_shape(const std::string& name) {
 // snapped to its face's nearest corner, over √area of the target.
 double benchmark_error(const BenchmarkShape& from, const BenchmarkShape& to,
                        const MatchResult& result) {
-    Eigen::MatrixX3d placed(static_cast<Eigen::Index>(from.reference.size()), 3);
-    for (std::size_t k = 0; k < from.reference.size(); ++k) {
-        placed.row(static_cast<Eigen::Index>(k)) = result.deformed.V.row(from.reference[k]);
-    }
     const GeodesicErrorMeasure measure(to.mesh);
-    return measure.errors(closest_points(placed, to.mesh), to.reference).to_vertex.mean();
+    return measure
+        .errors_at(closest_points(result.deformed.V, to.mesh), from.reference, to.reference)
+        .to_vertex.mean();
 }
 
 // Two subjects, 009 onto 057: the best rigid start settles the body mirrored (49 × 100 of

@@ -46,6 +46,14 @@ public:
     [[nodiscard]] GeodesicErrors errors(const std::vector<SurfacePoint>& mapped,
                                         const std::vector<Eigen::Index>& truth) const;
 
+    /// The errors of a map of every template vertex (`map[v]`: where it put template vertex v)
+    /// at the reference points: template vertex `from_reference[k]` belongs at target vertex
+    /// `truth[k]`. The benchmarks' measure of a whole map.
+    /// \throws InvalidInput as errors(), or if a template vertex is out of range of `map`.
+    [[nodiscard]] GeodesicErrors errors_at(const std::vector<SurfacePoint>& map,
+                                           const std::vector<Eigen::Index>& from_reference,
+                                           const std::vector<Eigen::Index>& truth) const;
+
     /// √area of the target, the unit of the errors.
     [[nodiscard]] double unit() const;
 
