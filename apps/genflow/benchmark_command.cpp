@@ -483,6 +483,7 @@ void register_benchmark_command(CLI::App& app) {
                      "first stage")
         ->check(CLI::IsMember({"match", "spectral-map"}))
         ->capture_default_str();
+    add_prior_flag(*command, options->flags);
     add_match_flags(*command, options->flags);
     command->callback([options] { run_benchmark(*options); });
 }

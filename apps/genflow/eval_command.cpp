@@ -25,6 +25,7 @@
 #include "genflow/matching/multiresolution.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/surface_distance.h"
+#include "match_flags.h"
 
 namespace genflow::cli {
 
@@ -35,9 +36,9 @@ struct EvalOptions {
     std::vector<std::string> priors{"h1", "rigid", "articulated"};
     std::vector<std::string> only;  // pair names; empty: all
     std::string data_dir;           // paths in the pairs are relative to it (default: the file's)
-    double second_opinion_above = MatchOptions{}.second_opinion.above;
-    std::string output_dir;  // where the targets matched and the results go; empty: nowhere
-    bool stages = false;     // the mean error after each stage of each level too
+    MatchFlags flags;               // the algorithm's options (the priors come from `priors`)
+    std::string output_dir;         // where the targets matched and the results go; empty: nowhere
+    bool stages = false;            // the mean error after each stage of each level too
     bool json = false;
 };
 
@@ -153,10 +154,9 @@ void run_eval(const EvalOptions& options) {
             if (prior == MatchPrior::Articulated && !parts) {
                 continue;
             }
-            MatchOptions match_options;
+            MatchOptions match_options = resolved(options.flags, parts.has_value());
             match_options.prior = prior;
             match_options.parts = parts;
-            match_options.second_opinion.above = options.second_opinion_above;
             nlohmann::json stages = nlohmann::json::array();
             if (options.stages) {
                 match_options.stages = [&](const MatchStage& stage) {
@@ -245,7 +245,7 @@ void register_eval_command(CLI::App& app) {
     command->add_option("--pairs", options->only, "Only these pairs (names)")->delimiter(',');
     command->add_option("--data-dir", options->data_dir,
                         "Directory the paths in the file are relative to (default: the file's)");
-    add_second_opinion_option(*command, options->second_opinion_above);
+    add_match_flags(*command, options->flags);
     command->add_option("--output-dir", options->output_dir,
                         "Write there each pair's target as matched (NAME.target.ply) and each "
                         "match's deformed template (NAME.PRIOR.ply, the template's vertices and "

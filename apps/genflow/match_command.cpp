@@ -167,6 +167,7 @@ void register_match_command(CLI::App& app) {
                         "The pose of the part file the template is in (its joint centres "
                         "moved there; default: the pose the template's file name, or its last "
                         "'_'-separated word, names, else the rest pose)");
+    add_prior_flag(*command, options->flags);
     add_match_flags(*command, options->flags);
     command->add_option("--correspondence", options->correspondence,
                         "Write, per template vertex, the closest target face and barycentric "

@@ -5,6 +5,17 @@
 
 namespace genflow::cli {
 
+void add_prior_flag(CLI::App& command, MatchFlags& flags) {
+    command
+        .add_option("--prior", flags.prior,
+                    "Deformation prior (the metric of the flow): l2 (baseline), h1 (smooth), "
+                    "rigid (quasi-rigid: rigid motion and scaling preferred), articulated "
+                    "(parts turn about their joints; needs --parts), isometric (bends "
+                    "freely, resists local stretching). Default: articulated with --parts, "
+                    "else h1")
+        ->check(CLI::IsMember(match_prior_names()));
+}
+
 void add_match_flags(CLI::App& command, MatchFlags& flags) {
     // Applied as soon as it is read, so that the other flags, applied after the whole line is
     // read, override it wherever they stand.
@@ -19,14 +30,6 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
             "second opinions, fits or limb exchanges; the ablation's baseline)")
         ->check(CLI::IsMember({"default", "paper"}))
         ->trigger_on_parse();
-    command
-        .add_option("--prior", flags.prior,
-                    "Deformation prior (the metric of the flow): l2 (baseline), h1 (smooth), "
-                    "rigid (quasi-rigid: rigid motion and scaling preferred), articulated "
-                    "(parts turn about their joints; needs --parts), isometric (bends "
-                    "freely, resists local stretching). Default: articulated with --parts, "
-                    "else h1")
-        ->check(CLI::IsMember(match_prior_names()));
     command
         .add_option("--levels", flags.match.levels,
                     "Resolution levels (0: automatic, coarsest about 1000 vertices)")

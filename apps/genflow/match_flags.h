@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The matcher's algorithm options on the command line (prior, levels, iterations, guidance,
-// ...), shared by `genflow match` and `genflow benchmark`: declared once, so both take the
-// same flags with the same checks and help.
+// ...), shared by `genflow match`, `genflow benchmark` and `genflow eval`: declared once, so all
+// three take the same flags with the same checks and help.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -21,7 +21,10 @@ struct MatchFlags {
     bool no_signature_fallback = false;
 };
 
-/// Declares the flags on `command`, writing into `flags` (which must outlive the parse).
+/// Declares `--prior` on `command`, writing into `flags` (which must outlive the parse).
+void add_prior_flag(CLI::App& command, MatchFlags& flags);
+
+/// Declares the algorithm's flags (all but the prior) on `command`, writing into `flags`.
 void add_match_flags(CLI::App& command, MatchFlags& flags);
 
 /// The options the flags ask for; `has_parts` says whether a part model will be given (the

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -83,6 +84,24 @@ TEST(EvalCli, ReportsTheErrorAfterEachStage) {
     EXPECT_NE(table.out.find("| limb | rigid | "), std::string::npos) << table.out;
     EXPECT_EQ(run_genflow("eval " + quoted(file) + " --priors rigid --json").out.find("\"stages\""),
               std::string::npos);  // only when asked
+}
+
+// The matcher's algorithm flags are `genflow match`'s: here two levels where the default
+// makes one of the 642-vertex limb, so the stages come from both.
+TEST(EvalCli, TakesTheMatchersAlgorithmFlags) {
+    const test::TemporaryDirectory directory;
+    const auto file = write_pair(directory.path(), {{"target_remeshed", "resampled.obj"}});
+    const auto result =
+        run_genflow("eval " + quoted(file) + " --priors rigid --levels 2 --stages --json");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto rows = nlohmann::json::parse(result.out);
+    ASSERT_EQ(rows.size(), 1u);
+    std::set<int> levels;
+    for (const auto& stage : rows[0]["stages"]) {
+        levels.insert(stage["level"].template get<int>());
+    }
+    EXPECT_EQ(levels, (std::set<int>{0, 1})) << rows[0]["stages"].dump();
+    EXPECT_LT(rows[0]["mean"].template get<double>(), 0.05);  // from a coarser start, still near
 }
 
 TEST(EvalCli, MatchesAPairAgainstItsGroundTruthSimplified) {
