@@ -14,6 +14,9 @@
 # where the default run's `details` say a stage kept nothing, the configuration without it
 # takes the default's pair as it is, and only the pairs the stage changed are matched again;
 # the table counts them ("matched"), and its time a pair is then the default's on the others.
+# A stage that only replaces a candidate's result by one that disagrees less (the signature
+# fallback) is reusable too: left out from a candidate that was not kept, it leaves that
+# candidate disagreeing as much or more, so the same one is kept.
 #
 # Usage: bench/ablation.sh [-b GENFLOW] [-d SHAPES] [-o OUT] [-n PAIRS] [-s SEED] [-j JOBS]
 #                          [-k SUBJECT_SIZE] [CONFIGURATION...]
@@ -31,7 +34,7 @@ configurations=(
   "no-eigenfunctions|--eigenfunction-guidance 0|the eigenfunction-guided last round and refinement (the last round guided by the signatures)"
   "no-stretching|--stretch-weight 0|the stretching energy of the last round (and so its stiffness candidates)"
   "no-stiffness-candidates|--stiffness-candidates 1|the stiffer last rounds"
-  "no-signature-fallback|--no-signature-fallback|a doubtful last round's rerun guided by the signatures"
+  "no-signature-fallback|--no-signature-fallback|a doubtful last round's rerun guided by the signatures|signature_fallback=false"
   "no-second-opinion|--second-opinion-above inf|the intrinsic start (and with it the alternative starts and the coarsest limb exchange)"
   "no-alternative-starts|--alternative-starts 0|the further intrinsic starts of a doubtful result|alternative_start=0"
   "no-limb-swaps|--no-limb-swaps|the limb exchanges at both levels|swapped_limbs=0"
