@@ -29,7 +29,6 @@ set -euo pipefail
 configurations=(
   "default||nothing|"
   "no-start-selection|--candidates 1|the rigid starts' selection flows: the best rigid fit goes on"
-  "no-contenders|--contenders 1|the second shortlisted start's guided rounds"
   "no-guided-rounds|--signature-guidance 0|every guided round (signatures, eigenfunctions, stretching) and the second coarsest level's refinement and checks"
   "no-eigenfunctions|--eigenfunction-guidance 0|the eigenfunction-guided last round and refinement (the last round guided by the signatures)"
   "no-stretching|--stretch-weight 0|the stretching energy of the last round (and so its stiffness candidates)"
@@ -41,7 +40,7 @@ configurations=(
   "no-refinement|--refinement-guidances 0|the second coarsest level's eigenfunction-guided flows|refinement_guidance=0.0"
   "no-turn-back|--no-turn-back|turning back parts a fine map places turned over|turned_parts=0"
   "no-map-fits|--map-fits 0|the fits to the fine functional map|map_fits=0"
-  "no-reruns|--contenders 1 --stiffness-candidates 1 --second-opinion-above inf --alternative-starts 0 --no-signature-fallback|every stage that runs the guided rounds again: contenders, stiffer rounds, the fallback, the second opinion and alternative starts (and so the limb exchanges)"
+  "no-reruns|--stiffness-candidates 1 --second-opinion-above inf --alternative-starts 0 --no-signature-fallback|every stage that runs the guided rounds again: stiffer rounds, the fallback, the second opinion and alternative starts (and so the limb exchanges)"
   "paper|--preset paper|everything: eq. 14 over the levels from the inputs' frames"
 )
 

@@ -80,13 +80,6 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
         ->check(CLI::Range(1, 24))
         ->capture_default_str();
     command
-        .add_option("--contenders", flags.match.starts.contenders,
-                    "Of those, the ones that agree within 25 % of the best go through the "
-                    "guided flows each (at most this many); the one that ends agreeing best "
-                    "is kept")
-        ->check(CLI::Range(1, 24))
-        ->capture_default_str();
-    command
         .add_option("--signature-guidance", flags.match.guided.signature_guidance,
                     "Weight of the heat kernel signatures in the coarsest flow, as a fraction "
                     "of the diagonal (points are near only if close and alike; 0 = off)")

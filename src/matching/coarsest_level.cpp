@@ -18,8 +18,8 @@ namespace genflow::detail {
 
 namespace {
 
-// The contest of the guided rounds between the starts that agreed about as well after the
-// selection flows, and the intrinsic starts; `kept_` indexes the outcome that goes on.
+// The contest of the guided rounds between the chosen rigid start and the intrinsic starts;
+// `kept_` indexes the outcome that goes on.
 class Contest {
 public:
     Contest(const Prepared& prepared, const std::vector<FlowResult>& selection_flows,
@@ -35,7 +35,7 @@ public:
           contenders_(std::move(contenders)),
           rigid_contenders_(contenders_.size()) {}
 
-    // The contenders side by side, the second opinion among them when every match asks it
+    // The rigid start's rounds, side by side with the second opinion's when every match asks it
     // (MatchOptions::second_opinion = 0: it then costs what one more contender does).
     void run_contenders() {
         if (second_opinion_above() == 0) {
@@ -281,16 +281,13 @@ CoarsestMatch match_coarsest_level(const Prepared& prepared, const LevelFlows& f
                                    const SpectralDescriptors* spectral, const MatchOptions& options,
                                    double diagonal, const std::atomic<bool>& cancelled) {
     // Of the selection flows within selection_tolerance of the lowest d_H, the one whose
-    // signatures agree best goes on (MatchOptions::starts), with the contenders that agree
-    // about as well (MatchOptions::starts.contenders).
+    // signatures agree best goes on (MatchOptions::starts).
     std::vector<FlowResult> selection;
-    std::vector<std::size_t> contenders{0};
+    std::size_t chosen = 0;
     if (prepared.starts.size() > 1) {
         selection = selection_flows(prepared, flows, options);
-        contenders = choose_starts(selection, *spectral, options.starts.selection_tolerance,
-                                   options.starts.contender_tolerance, options.starts.contenders);
+        chosen = choose_start(selection, *spectral, options.starts.selection_tolerance);
     }
-    const std::size_t chosen = contenders.front();
     if (cancelled && !selection.empty()) {
         return {.flow = std::move(selection[chosen]), .start = prepared.starts[chosen]};
     }
@@ -300,8 +297,7 @@ CoarsestMatch match_coarsest_level(const Prepared& prepared, const LevelFlows& f
                 .start = prepared.starts[chosen]};
     }
     const GuidedRounds rounds(prepared.pyramid, flows, *spectral, options, diagonal, cancelled);
-    Contest contest(prepared, selection, std::move(contenders), rounds, options, diagonal,
-                    cancelled);
+    Contest contest(prepared, selection, {chosen}, rounds, options, diagonal, cancelled);
     contest.run_contenders();
     contest.ask_second_opinion();
     contest.try_alternative_starts();

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The matcher's coarsest level: where the template is put on the target as a whole, so where a
-// match is right or wrong. The rigid starts flow briefly and the ones whose signatures agree
-// best contend; each goes through the guided rounds (guided_rounds.h), beside the second
-// opinion from an intrinsic start; a doubtful winner is matched again from further intrinsic
-// starts, and one with limbs on each other's places from its limbs exchanged. The rules that
-// compare the contenders are in selection.h.
+// match is right or wrong. The rigid starts flow briefly and the one whose signatures agree
+// best goes through the guided rounds (guided_rounds.h), beside the second opinion from an
+// intrinsic start; a doubtful winner is matched again from further intrinsic starts, and one
+// with limbs on each other's places from its limbs exchanged. The rules that compare the
+// contenders are in selection.h.
 #pragma once
 
 #include <atomic>

@@ -92,13 +92,11 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         !detail::finite_at_least(options.guided.signature_guidance, 0) ||
         !detail::finite_at_least(options.guided.eigenfunction_guidance, 0) ||
         !detail::finite_at_least(options.guided.stretch_weight, 0) ||
-        options.guided.stiffness_candidates < 1 || options.starts.contenders < 1 ||
-        !detail::finite_at_least(options.starts.contender_tolerance, 0) ||
-        options.guided.guidance_candidates < 1 || options.guided.guidance_candidates > 8 ||
-        options.refinement.guidances < 0 || options.refinement.guidances > 8 ||
-        options.refinement_iterations < 0 || options.map_fit.max_fits < 0 ||
-        options.second_opinion.alternative_starts < 0 || std::isnan(options.second_opinion.above) ||
-        options.second_opinion.above < 0 ||
+        options.guided.stiffness_candidates < 1 || options.guided.guidance_candidates < 1 ||
+        options.guided.guidance_candidates > 8 || options.refinement.guidances < 0 ||
+        options.refinement.guidances > 8 || options.refinement_iterations < 0 ||
+        options.map_fit.max_fits < 0 || options.second_opinion.alternative_starts < 0 ||
+        std::isnan(options.second_opinion.above) || options.second_opinion.above < 0 ||
         std::isnan(options.second_opinion.alternative_starts_above) ||
         options.second_opinion.alternative_starts_above < 0 ||
         !detail::finite_above(options.articulated_finest_global, 0) ||
@@ -108,7 +106,6 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
             "stagnation_tolerance >= 0, h1_length > 0, levels >= 0, coarse_vertices >= 100, "
             "coarse_epsilon >= 1, refinement_iterations >= 0, starts.candidates >= 1, "
             "starts.selection_iterations >= 0, starts.selection_tolerance >= 0, "
-            "starts.contenders >= 1, starts.contender_tolerance >= 0, "
             "guided.signature_guidance >= 0, guided.eigenfunction_guidance >= 0, "
             "guided.stretch_weight >= 0, guided.stiffness_candidates >= 1, "
             "guided.guidance_candidates in [1, 8], refinement.guidances in [0, 8], "

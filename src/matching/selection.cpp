@@ -17,30 +17,25 @@ bool is_doubtful(double disagreement) {
     return disagreement > kDoubtfulDisagreement;
 }
 
-std::vector<std::size_t> choose_starts(const std::vector<FlowResult>& flows,
-                                       const SpectralDescriptors& spectral, double tolerance,
-                                       double contender_tolerance, int contenders) {
+std::size_t choose_start(const std::vector<FlowResult>& flows, const SpectralDescriptors& spectral,
+                         double tolerance) {
     if (flows.size() < 2) {
-        return {0};
+        return 0;
     }
     double lowest = std::numeric_limits<double>::infinity();
     for (const FlowResult& flow : flows) {
         lowest = std::min(lowest, flow.energy.back());
     }
-    std::vector<std::pair<double, std::size_t>> shortlist;
+    std::size_t chosen = 0;
+    double least = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < flows.size(); ++k) {
         if (flows[k].energy.back() <= (1 + tolerance) * lowest) {
-            shortlist.emplace_back(disagreement(spectral, flows[k].mesh.V), k);
+            const double value = disagreement(spectral, flows[k].mesh.V);
+            if (value < least) {
+                least = value;
+                chosen = k;
+            }
         }
-    }
-    std::sort(shortlist.begin(), shortlist.end());
-    std::vector<std::size_t> chosen;
-    for (const auto& [value, k] : shortlist) {
-        if (static_cast<int>(chosen.size()) == contenders ||
-            value > (1 + contender_tolerance) * shortlist.front().first) {
-            break;
-        }
-        chosen.push_back(k);
     }
     return chosen;
 }

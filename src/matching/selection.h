@@ -27,14 +27,10 @@ namespace genflow::detail {
 /// Whether a result's disagreement makes it doubtful (kDoubtfulDisagreement, match.h).
 [[nodiscard]] bool is_doubtful(double disagreement);
 
-/// The flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
-/// one that disagrees least first, then those whose disagreement is within
-/// `contender_tolerance` of its, at most `contenders` in all, in order (MatchOptions::starts,
-/// MatchOptions::starts.contenders).
-[[nodiscard]] std::vector<std::size_t> choose_starts(const std::vector<FlowResult>& flows,
-                                                     const SpectralDescriptors& spectral,
-                                                     double tolerance, double contender_tolerance,
-                                                     int contenders);
+/// Of the flows from the rigid starts whose final d_H is within `tolerance` of the lowest, the
+/// one that disagrees least (MatchOptions::starts).
+[[nodiscard]] std::size_t choose_start(const std::vector<FlowResult>& flows,
+                                       const SpectralDescriptors& spectral, double tolerance);
 
 /// Of flows run side by side, the one whose rating is lowest, its rating, and the steps of them
 /// all. Once cancelled, the first (the one that reported): the others may have stopped

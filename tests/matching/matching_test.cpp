@@ -27,6 +27,7 @@
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/parts/part_model.h"
+#include "matching/selection.h"
 #include "matching/spectral_descriptors.h"
 #include "spatial/point_index.h"
 #include "support/test_meshes.h"
@@ -647,6 +648,30 @@ TEST(SpectralDescriptors, TellTheRightPlacementFromAFlippedOne) {
     EXPECT_GT(flipped / folded, kDoubtfulDisagreement);
 }
 
+// Of the selection flows, d_H shortlists (within the tolerance of the lowest) and the
+// signatures choose: the right placement over one turned end over end when both ended as near
+// the target, whichever comes first; not when its d_H ended beyond the tolerance.
+TEST(SpectralDescriptors, ChooseTheStartThatAgreesBestAmongTheNearest) {
+    const BentLimbPair pair;
+    const detail::SpectralDescriptors signatures(pair.template_mesh, pair.target);
+    const Eigen::Matrix3d half_turn =
+        Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const auto ended_at = [&](const Eigen::MatrixX3d& V, double distance) {
+        FlowResult flow;
+        flow.mesh = TriangleMesh{V, pair.template_mesh.F};
+        flow.energy = {2 * distance, distance};
+        return flow;
+    };
+    const FlowResult right = ended_at(pair.truth, 1.0);
+    const FlowResult flipped = ended_at(pair.truth * half_turn.transpose(), 1.0);
+    EXPECT_EQ(detail::choose_start({flipped, right}, signatures, 0.05), 1U);
+    EXPECT_EQ(detail::choose_start({right, flipped}, signatures, 0.05), 0U);
+    const FlowResult right_but_farther = ended_at(pair.truth, 1.1);
+    EXPECT_EQ(detail::choose_start({flipped, right_but_farther}, signatures, 0.05), 0U);
+    EXPECT_EQ(detail::choose_start({flipped, right_but_farther}, signatures, 0.2), 1U);
+    EXPECT_EQ(detail::choose_start({right}, signatures, 0.05), 0U);
+}
+
 // The descriptors are the log signatures, centred and scaled per time so that the template's
 // spread is the given length; where the bend puts a template point, the target's are close,
 // closer than those of the point the flipped placement puts there (the two limbs are sampled
@@ -984,13 +1009,7 @@ TEST(Match, RejectsBadInput) {
         MatchOptions eigenfunctions;
         eigenfunctions.guided.eigenfunction_guidance = tolerance;
         EXPECT_THROW((void)match(mesh, mesh, eigenfunctions), InvalidInput);
-        MatchOptions contention;
-        contention.starts.contender_tolerance = tolerance;
-        EXPECT_THROW((void)match(mesh, mesh, contention), InvalidInput);
     }
-    MatchOptions no_contender;
-    no_contender.starts.contenders = 0;
-    EXPECT_THROW((void)match(mesh, mesh, no_contender), InvalidInput);
 }
 
 TEST(Correspondence, ClosestPointsLieOnTheTarget) {

@@ -80,10 +80,6 @@ struct StartOptions {
     int selection_iterations = 300;
     /// The shortlist: the starts whose d_H ends within this share of the lowest.
     double selection_tolerance = 0.05;
-    /// Of the shortlist, at most this many whose disagreement is within `contender_tolerance` of
-    /// the lowest go through the guided rounds; the one that ends disagreeing least is kept.
-    int contenders = 2;
-    double contender_tolerance = 0.25;
     /// Options of the rigid alignment.
     RigidAlignmentOptions alignment;
 };
