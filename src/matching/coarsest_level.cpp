@@ -18,13 +18,13 @@ namespace genflow::detail {
 
 namespace {
 
-// The contest of the guided rounds between the chosen rigid start and the intrinsic starts;
-// `kept_` indexes the outcome that goes on.
+// The contest of the guided rounds between the chosen rigid start (outcome 0) and the intrinsic
+// starts (the second opinion's is outcome 1); `kept_` indexes the outcome that goes on.
 class Contest {
 public:
     Contest(const Prepared& prepared, const std::vector<FlowResult>& selection_flows,
-            std::vector<std::size_t> contenders, const GuidedRounds& rounds,
-            const MatchOptions& options, double diagonal, const std::atomic<bool>& cancelled)
+            std::size_t rigid_start, const GuidedRounds& rounds, const MatchOptions& options,
+            double diagonal, const std::atomic<bool>& cancelled)
         : prepared_(prepared),
           selection_flows_(selection_flows),
           rounds_(rounds),
@@ -32,8 +32,7 @@ public:
           diagonal_(diagonal),
           cancelled_(cancelled),
           starts_(prepared.starts),
-          contenders_(std::move(contenders)),
-          rigid_contenders_(contenders_.size()) {}
+          contenders_{rigid_start} {}
 
     // The rigid start's rounds, side by side with the second opinion's when every match asks it
     // (MatchOptions::second_opinion = 0: it then costs what one more contender does).
@@ -51,7 +50,7 @@ public:
     }
 
     // Asked only of results that disagree more than a threshold above 0, the second opinion
-    // comes after the rigid starts' rounds and is kept if it disagrees less.
+    // comes after the rigid start's rounds and is kept if it disagrees less.
     void ask_second_opinion() {
         if (!cancelled_ &&
             needs_second_opinion(outcomes_[kept_].disagreement, second_opinion_above()) &&
@@ -61,9 +60,9 @@ public:
                 kept_ = outcomes_.size() - 1;
             }
         }
-        if (contenders_.size() > rigid_contenders_) {
-            match_.second_opinion_disagreement = outcomes_[rigid_contenders_].disagreement;
-            match_.second_opinion = kept_ == rigid_contenders_;
+        if (contenders_.size() > kSecondOpinion) {
+            match_.second_opinion_disagreement = outcomes_[kSecondOpinion].disagreement;
+            match_.second_opinion = kept_ == kSecondOpinion;
         }
     }
 
@@ -146,6 +145,12 @@ public:
     }
 
 private:
+    // The outcomes of the rigid start and of the second opinion: outcome kSecondOpinion + j is
+    // intrinsic start j's (the alternative starts follow the second opinion), then the limb
+    // exchange's.
+    static constexpr std::size_t kRigidStart = 0;
+    static constexpr std::size_t kSecondOpinion = 1;
+
     [[nodiscard]] const Level& coarsest() const { return prepared_.pyramid.back(); }
 
     // MatchOptions::second_opinion's threshold; +inf (never) when it is off.
@@ -165,8 +170,7 @@ private:
         return rounds_.match(
             {.placement = starts_[s],
              .selection = s < selection_flows_.size() ? &selection_flows_[s].mesh.V : nullptr,
-             .intrinsic =
-                 k < rigid_contenders_ ? nullptr : &intrinsic_[k - rigid_contenders_].placement},
+             .intrinsic = k == kRigidStart ? nullptr : &intrinsic_[k - kSecondOpinion].placement},
             reports);
     }
 
@@ -211,7 +215,7 @@ private:
     // Whether outcome k goes on instead of outcome `than` (replaces()).
     bool preferred(std::size_t k, std::size_t than) {
         const auto score = [&](std::size_t i) {
-            return Score{i < rigid_contenders_ ? StartKind::Rigid : StartKind::Intrinsic,
+            return Score{i == kRigidStart ? StartKind::Rigid : StartKind::Intrinsic,
                          outcomes_[i].disagreement, [this, i] { return turning(i); }};
         };
         return replaces(score(k), score(than));
@@ -225,7 +229,6 @@ private:
     const std::atomic<bool>& cancelled_;
     std::vector<Similarity> starts_;       // the rigid starts, then those added
     std::vector<std::size_t> contenders_;  // per outcome, its start
-    std::size_t rigid_contenders_;
     std::vector<IntrinsicStart> intrinsic_;
     std::optional<AnalysedShapes> shapes_;  // once the second opinion needed them
     std::vector<GuidedMatch> outcomes_;
@@ -297,7 +300,7 @@ CoarsestMatch match_coarsest_level(const Prepared& prepared, const LevelFlows& f
                 .start = prepared.starts[chosen]};
     }
     const GuidedRounds rounds(prepared.pyramid, flows, *spectral, options, diagonal, cancelled);
-    Contest contest(prepared, selection, {chosen}, rounds, options, diagonal, cancelled);
+    Contest contest(prepared, selection, chosen, rounds, options, diagonal, cancelled);
     contest.run_contenders();
     contest.ask_second_opinion();
     contest.try_alternative_starts();
