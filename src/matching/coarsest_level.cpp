@@ -41,7 +41,8 @@ public:
             add_intrinsic_contender();
         }
         outcomes_.resize(contenders_.size());
-        run_side_by_side(contenders_.size(), [&](std::size_t k) { outcomes_[k] = run(k, k == 0); });
+        run_side_by_side(contenders_.size(),
+                         [&](std::size_t k) { outcomes_[k] = run(k, k == kRigidStart); });
         for (std::size_t k = 0; k < outcomes_.size(); ++k) {
             if (!cancelled_ && preferred(k, kept_)) {
                 kept_ = k;
