@@ -33,6 +33,7 @@ configurations=(
   "no-eigenfunctions|--eigenfunction-guidance 0|the eigenfunction-guided last round and refinement (the last round guided by the signatures)"
   "no-stretching|--stretch-weight 0|the stretching energy of the last round (and so its stiffness candidates)"
   "no-stiffness-candidates|--stiffness-candidates 1|the stiffer last rounds"
+  "no-signatures-reading|--no-signatures-reading|the match made again with the eigenfunctions off, kept if its map commutes better|signatures_reading=false"
   "no-signature-fallback|--no-signature-fallback|a doubtful last round's rerun guided by the signatures|signature_fallback=false"
   "no-second-opinion|--second-opinion-above inf|the intrinsic start (and with it the alternative starts and the coarsest limb exchange)"
   "no-alternative-starts|--alternative-starts 0|the further intrinsic starts of a doubtful result|alternative_start=0"

@@ -95,7 +95,10 @@ nlohmann::json match_choices(const MatchResult& result) {
             {"second_opinion_disagreement", number_or_null(result.second_opinion_disagreement)},
             {"alternative_starts", result.alternative_starts},
             {"alternative_start", result.alternative_start},
-            {"swapped_limbs", result.swapped_limbs}};
+            {"swapped_limbs", result.swapped_limbs},
+            {"signatures_reading", result.signatures_reading},
+            {"first_commutativity", number_or_null(result.first_commutativity)},
+            {"signatures_commutativity", number_or_null(result.signatures_commutativity)}};
 }
 
 }  // namespace genflow::cli

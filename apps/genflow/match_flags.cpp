@@ -146,6 +146,10 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
     command.add_flag("--no-signature-fallback", flags.no_signature_fallback,
                      "Do not run a doubtful last coarsest round again guided by the heat kernel "
                      "signatures alone, whose result is kept if it disagrees less");
+    command.add_flag("--no-signatures-reading", flags.no_signatures_reading,
+                     "Do not make the match again with the eigenfunctions off (guided by the "
+                     "heat kernel signatures alone), whose result is kept if its map commutes "
+                     "better with the surfaces' Laplacians");
     command.add_flag("--no-turn-back", flags.no_turn_back,
                      "Do not turn back the parts that a fine functional map (60 eigenfunctions) "
                      "places turned over in their own place (a hand palm for back) after the "
@@ -174,6 +178,8 @@ MatchOptions resolved(const MatchFlags& flags, bool has_parts) {
     options.limb_swaps.enabled = options.limb_swaps.enabled && !flags.no_limb_swaps;
     options.guided.signature_fallback =
         options.guided.signature_fallback && !flags.no_signature_fallback;
+    options.signatures_reading.enabled =
+        options.signatures_reading.enabled && !flags.no_signatures_reading;
     return options;
 }
 

@@ -19,6 +19,7 @@ struct MatchFlags {
     bool no_turn_back = false;
     bool no_limb_swaps = false;
     bool no_signature_fallback = false;
+    bool no_signatures_reading = false;
 };
 
 /// Declares `--prior` on `command`, writing into `flags` (which must outlive the parse).

@@ -18,6 +18,7 @@
 #include "matching/level_flow.h"
 #include "matching/prepare.h"
 #include "matching/selection.h"
+#include "matching/signatures_reading.h"
 #include "matching/spectral_descriptors.h"
 #include "matching/stopwatch.h"
 #include "operators/triangle.h"
@@ -66,6 +67,7 @@ MatchOptions paper_match_options() {
     options.refinement.enabled = false;
     options.turn_back.enabled = false;
     options.map_fit.enabled = false;
+    options.signatures_reading.enabled = false;
     return options;
 }
 
@@ -130,29 +132,18 @@ bool MatchResult::doubtful() const {
 
 namespace {
 
-// match() on surfaces that repair_surface() leaves as they are: the pipeline's stages.
-MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh& target,
-                           const MatchOptions& options) {
-    const auto start = std::chrono::steady_clock::now();
-    const double diagonal = bounding_box_diagonal(target);
+// One reading of the match from the prepared pyramid: the coarsest level, then the finer ones.
+MatchResult read_match(const detail::Prepared& prepared,
+                       const detail::SpectralDescriptors* analysis,
+                       const TriangleMesh& template_mesh, const MatchOptions& options,
+                       double diagonal, std::atomic<bool>& cancelled) {
     MatchResult result;
-
-    // Rigid starts, scale and the pyramid (prepare.h).
-    const detail::Prepared prepared = detail::prepare(template_mesh, target, options);
     result.alignment_seconds = prepared.alignment_seconds;
     const std::vector<detail::Level>& pyramid = prepared.pyramid;
     const int count = static_cast<int>(pyramid.size());
 
-    // The coarsest level's intrinsic analysis, which judges starts and guides the flows.
-    auto clock = std::chrono::steady_clock::now();
-    std::optional<detail::SpectralDescriptors> spectral;
-    if (prepared.starts.size() > 1 || detail::runs_guided_rounds(options)) {
-        spectral.emplace(pyramid.back().template_mesh, pyramid.back().target);
-    }
-    const detail::SpectralDescriptors* analysis = spectral ? &*spectral : nullptr;
-
     // The coarsest level: the template put on the target as a whole (coarsest_level.h).
-    std::atomic<bool> cancelled = false;
+    const auto clock = std::chrono::steady_clock::now();
     const detail::LevelFlows flows(pyramid, options, diagonal, cancelled);
     detail::CoarsestMatch coarsest =
         detail::match_coarsest_level(prepared, flows, analysis, options, diagonal, cancelled);
@@ -168,8 +159,8 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     result.levels.push_back(detail::level_report(
         pyramid.back(), coarsest.flow, prepared.pyramid_seconds + detail::seconds_since(clock)));
     flows.tell(count - 1, "coarsest", coarsest.flow.mesh);
-    if (spectral) {
-        result.intrinsic_disagreement = detail::disagreement(*spectral, coarsest.flow.mesh.V);
+    if (analysis != nullptr) {
+        result.intrinsic_disagreement = detail::disagreement(*analysis, coarsest.flow.mesh.V);
     }
 
     // The finer levels: carried, refined, flowed (finer_levels.h).
@@ -184,6 +175,66 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
 
     result.deformed = TriangleMesh{std::move(finest.deformed), template_mesh.F};
     result.hausdorff_energy = result.levels.back().energy_end;
+    return result;
+}
+
+// The signatures' reading (signatures_reading.h) beside `first`: the one whose map commutes
+// better is returned. Without the eigenbases (Lanczos did not converge) the first stands.
+MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
+                            const detail::SpectralDescriptors* analysis,
+                            const TriangleMesh& template_mesh, const TriangleMesh& target,
+                            const MatchOptions& options, double diagonal,
+                            std::atomic<bool>& cancelled) {
+    std::optional<detail::ReadingJudge> judge;
+    try {
+        judge.emplace(template_mesh, target);
+    } catch (const SolverError&) {
+        return first;
+    }
+    MatchResult reading =
+        read_match(prepared, analysis, template_mesh, detail::signatures_reading_options(options),
+                   diagonal, cancelled);
+    if (cancelled) {
+        return first;
+    }
+    const double first_commutativity = judge->commutativity(first.deformed.V);
+    const double reading_commutativity = judge->commutativity(reading.deformed.V);
+    MatchResult& kept = detail::keeps_signatures_reading(reading_commutativity, first_commutativity)
+                            ? reading
+                            : first;
+    kept.signatures_reading = &kept == &reading;
+    kept.first_commutativity = first_commutativity;
+    kept.signatures_commutativity = reading_commutativity;
+    return std::move(kept);
+}
+
+// match() on surfaces that repair_surface() leaves as they are: the pipeline's stages.
+MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh& target,
+                           const MatchOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    const double diagonal = bounding_box_diagonal(target);
+
+    // Rigid starts, scale and the pyramid (prepare.h).
+    const detail::Prepared prepared = detail::prepare(template_mesh, target, options);
+
+    // The coarsest level's intrinsic analysis, which judges starts and guides the flows.
+    const auto clock = std::chrono::steady_clock::now();
+    std::optional<detail::SpectralDescriptors> spectral;
+    if (prepared.starts.size() > 1 || detail::runs_guided_rounds(options)) {
+        spectral.emplace(prepared.pyramid.back().template_mesh, prepared.pyramid.back().target);
+    }
+    const detail::SpectralDescriptors* analysis = spectral ? &*spectral : nullptr;
+    const double analysis_seconds = detail::seconds_since(clock);
+
+    // The match, read with the eigenfunctions and, where they guide it, with the signatures.
+    std::atomic<bool> cancelled = false;
+    MatchResult result =
+        read_match(prepared, analysis, template_mesh, options, diagonal, cancelled);
+    if (detail::reads_with_signatures(options) && !cancelled) {
+        result = judged_readings(std::move(result), prepared, analysis, template_mesh, target,
+                                 options, diagonal, cancelled);
+    }
+    result.levels.front().seconds += analysis_seconds;
     result.seconds = detail::seconds_since(start);
     return result;
 }

@@ -111,6 +111,12 @@ struct LimbExchange {
 /// and its signatures about as well.
 [[nodiscard]] bool keeps_limb_exchange(const LimbExchange& exchange);
 
+/// Whether the signatures' reading replaces the first (MatchOptions::signatures_reading): its map
+/// commutes better with the Laplacians (laplacian_commutativity()), which tells the two apart
+/// where the disagreement does not (docs/matching.md, "The signatures' reading").
+[[nodiscard]] bool keeps_signatures_reading(double reading_commutativity,
+                                            double first_commutativity);
+
 /// How much higher d_H may end after parts were turned back and flowed again
 /// (MatchOptions::turn_back): "about as low", a quarter's allowance.
 inline constexpr double kTurnBackAllowance = 1.25;

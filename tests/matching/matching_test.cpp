@@ -76,12 +76,21 @@ Eigen::MatrixX3d mirrored_beyond(const BentLimbPair& pair, double above,
     return placed;
 }
 
-// Options for matching the bent limb as given (no global alignment) with one candidate of the
-// last guided round and no second opinion: fewer flows to wait for where a test is about
-// something else (the candidates have Match.StiffnessAndGuidanceCandidatesKeepOneAndReportIt,
-// the second opinion Match.SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss).
-MatchOptions one_candidate_options() {
+// The defaults with one reading: the signatures' reading makes every match twice, and has its
+// own test (Match.SignaturesReadingKeepsTheReadingThatCommutesBetter).
+MatchOptions one_reading_options() {
     MatchOptions options;
+    options.signatures_reading.enabled = false;
+    return options;
+}
+
+// Options for matching the bent limb as given (no global alignment) with one reading, one
+// candidate of the last guided round and no second opinion: fewer flows to wait for where a
+// test is about something else (the candidates have
+// Match.StiffnessAndGuidanceCandidatesKeepOneAndReportIt, the second opinion
+// Match.SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss).
+MatchOptions one_candidate_options() {
+    MatchOptions options = one_reading_options();
     options.starts.enabled = false;
     options.guided.stiffness_candidates = 1;
     options.guided.guidance_candidates = 1;
@@ -457,11 +466,40 @@ TEST(Match, EachStageHasItsOwnSwitch) {
     for (bool* enabled :
          {&switched.starts.enabled, &switched.guided.enabled, &switched.second_opinion.enabled,
           &switched.limb_swaps.enabled, &switched.refinement.enabled, &switched.turn_back.enabled,
-          &switched.map_fit.enabled}) {
+          &switched.map_fit.enabled, &switched.signatures_reading.enabled}) {
         *enabled = false;
     }
     EXPECT_EQ(match(pair.template_mesh, pair.target, off).deformed.V,
               match(pair.template_mesh, pair.target, switched).deformed.V);
+}
+
+// The signatures' reading makes the match again with the eigenfunctions off and keeps the
+// reading whose map commutes better with the Laplacians: the result is, to the bit, one of the two
+// matches made alone, the one whose reported commutativity is lower.
+TEST(Match, SignaturesReadingKeepsTheReadingThatCommutesBetter) {
+    const BentLimbPair pair;
+    MatchOptions options;
+    options.levels = 2;
+    options.second_opinion.enabled = false;
+    options.signatures_reading.enabled = false;
+    const MatchResult first = match(pair.template_mesh, pair.target, options);
+    MatchOptions signatures = options;
+    signatures.guided.eigenfunction_guidance = 0;
+    const MatchResult second = match(pair.template_mesh, pair.target, signatures);
+    EXPECT_FALSE(first.first_commutativity.has_value());
+
+    options.signatures_reading.enabled = true;
+    const MatchResult judged = match(pair.template_mesh, pair.target, options);
+    ASSERT_TRUE(judged.first_commutativity.has_value());
+    ASSERT_TRUE(judged.signatures_commutativity.has_value());
+    std::printf("commutativity: with the eigenfunctions %.4f, the signatures alone %.4f\n",
+                *judged.first_commutativity, *judged.signatures_commutativity);
+    EXPECT_EQ(judged.signatures_reading,
+              *judged.signatures_commutativity < *judged.first_commutativity);
+    EXPECT_EQ(judged.deformed.V, judged.signatures_reading ? second.deformed.V : first.deformed.V);
+    // Both readings match this near-isometric pair right, and commute as right maps do.
+    EXPECT_LT(std::max(*judged.first_commutativity, *judged.signatures_commutativity), 0.1);
+    EXPECT_LT(pair.error(judged), 0.02);
 }
 
 // A template as meshes come (a reversed duplicate face, a fin on an edge, a seam of coincident
@@ -577,7 +615,7 @@ TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
     const BentLimbPair pair;
     const TriangleMesh& template_mesh = pair.template_mesh;
     const auto strain = [&](const MatchResult& r) { return mean_edge_strain(template_mesh, r); };
-    MatchOptions options;
+    MatchOptions options = one_reading_options();
     options.starts.enabled = false;
     options.prior = MatchPrior::Isometric;
     options.isometric.refresh_interval = 1;  // the prior itself, not its faster lagged form
@@ -1058,7 +1096,8 @@ void expect_second_opinion_kept(const test::PosedSpikedFigure& figure, const Mat
 TEST(Match, SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss) {
     const test::PosedSpikedFigure figure;
     ASSERT_GT(MatchOptions{}.second_opinion.alternative_starts, 0);
-    expect_second_opinion_kept(figure, match(figure.template_mesh, figure.target), false);
+    expect_second_opinion_kept(
+        figure, match(figure.template_mesh, figure.target, one_reading_options()), false);
 }
 
 // Asked only of results that disagree more than second_opinion_above, the second opinion comes
@@ -1068,7 +1107,7 @@ TEST(Match, SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss) {
 // 5 minutes of the sanitizers' run for three), and the result is still right.
 TEST(Match, DisagreeingMatchTakesTheSecondOpinionAfterTheRigidStarts) {
     const test::PosedSpikedFigure figure;
-    MatchOptions options;
+    MatchOptions options = one_reading_options();
     options.second_opinion.above = 0.14;
     options.second_opinion.alternative_starts_above = 0.1;
     options.second_opinion.alternative_starts = 1;

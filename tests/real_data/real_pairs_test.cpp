@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // match() with its defaults on real pairs of $GENFLOW_DATA/pairs.json (template, remeshed
 // target in another pose, ground truth): the small ones, and two full pairs whose failures a
-// default fixed. No pre-alignment, no parts, no tuning.
+// default fixed. No pre-alignment, no parts, no tuning. One reading: the stages these tests
+// check act within it, and the signatures' reading, which makes every match twice, has its
+// own test (faust_r_test.cpp).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -34,6 +36,13 @@ namespace {
 // 9 % off, where the forearm meets the upper arm). The h1 matches of `pairs.json` strand at most 4.
 constexpr double kStrandedFraction = 0.005;
 
+// The defaults with one reading (MatchOptions::signatures_reading off).
+MatchOptions one_reading() {
+    MatchOptions options;
+    options.signatures_reading.enabled = false;
+    return options;
+}
+
 // One pair of $GENFLOW_DATA/pairs.json, read: template, remeshed target in another pose, and
 // ground truth.
 struct DataPair {
@@ -64,7 +73,8 @@ std::optional<DataPair> named_pair(const std::string& name) {
 }
 
 // match() with its defaults (or `options`) on `pair`: its error against the ground truth.
-CorrespondenceError default_match_error(const DataPair& pair, const MatchOptions& options = {}) {
+CorrespondenceError default_match_error(const DataPair& pair,
+                                        const MatchOptions& options = one_reading()) {
     const MatchResult result = match(pair.template_mesh, pair.target, options);
     CorrespondenceError error = correspondence_error(result.deformed.V, pair.truth);
     std::printf(
@@ -75,8 +85,8 @@ CorrespondenceError default_match_error(const DataPair& pair, const MatchOptions
 }
 
 // The same on the pair so named; nothing without the data or that pair.
-std::optional<CorrespondenceError> default_match_error(const std::string& name,
-                                                       const MatchOptions& options = {}) {
+std::optional<CorrespondenceError> default_match_error(
+    const std::string& name, const MatchOptions& options = one_reading()) {
     const std::optional<DataPair> pair = named_pair(name);
     if (!pair) {
         return std::nullopt;
@@ -175,7 +185,7 @@ TEST(RealPairs, FullBodyKeepsItsHeadOnStraight) {
 // tells them apart, and then in its own: 0.44 %, 5 vertices stranded, 4.0 % of the area turned
 // over.
 TEST(RealPairs, IsometricBodyIsNotTurnedFrontToBack) {
-    MatchOptions options;
+    MatchOptions options = one_reading();
     options.prior = MatchPrior::Isometric;
     const std::optional<CorrespondenceError> error =
         default_match_error("tosca_michael_0_1", options);
@@ -243,7 +253,7 @@ TEST(RealPairs, ArticulatedArmEndsUntwisted) {
     }
     const TriangleMesh template_mesh = read_mesh(rig / "arm_rest.ply");
     const TriangleMesh truth = read_mesh(rig / "arm_pose2.ply");
-    MatchOptions options;
+    MatchOptions options = one_reading();
     options.prior = MatchPrior::Articulated;
     options.parts =
         read_part_model(PartFiles{rig / "arm_rig.json", std::nullopt, rig / "arm_bone_weights.txt"},
@@ -272,7 +282,7 @@ TEST(RealPairs, ArmTurnedOverAndShrunkMatchesAsItIs) {
     motion.scale = 0.003;
     pair->target.V = motion.apply(pair->target.V);
     pair->truth.V = motion.apply(pair->truth.V);
-    const MatchResult result = match(pair->template_mesh, pair->target);
+    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("arm turned over and shrunk: mean error %.4f, %ld stranded\n", error.mean,
                 static_cast<long>(error.stranded_count));
@@ -324,7 +334,8 @@ TEST(RealPairs, RoughBodyIsChosenOnItsTargetSmoothed) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no tosca_michael_0_1 in it";
     }
-    const MatchResult result = match(pair->template_mesh, rough(pair->target, 0.005));
+    const MatchResult result =
+        match(pair->template_mesh, rough(pair->target, 0.005), one_reading());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("rough michael: mean error %.4f, %ld stranded\n", error.mean,
                 static_cast<long>(error.stranded_count));
@@ -407,7 +418,7 @@ TEST(RealPairs, KneelingManIsMatchedAtHisSize) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no TOSCA michael in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target);
+    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("kneeling man from pose 0: mean error %.4f, disagreement %.3f\n", error.mean,
                 result.intrinsic_disagreement.value_or(-1));
@@ -430,7 +441,7 @@ TEST(RealPairs, KneelingManFromAnotherPoseGetsAnAlternativeStart) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no TOSCA michael in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target);
+    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("kneeling man from pose 1: mean error %.4f, alternative start %d of %d\n",
                 error.mean, result.alternative_start, result.alternative_starts);
@@ -454,7 +465,7 @@ TEST(RealPairs, KneelingManStandsUpGuidedByTheSignaturesAlone) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no TOSCA michael in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target);
+    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("kneeling man to standing: mean error %.4f, signatures alone %d\n", error.mean,
                 static_cast<int>(result.signature_fallback));
@@ -476,7 +487,7 @@ TEST(RealPairs, HeldOutArmTakesTheIntrinsicStartNearATie) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl arm in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target);
+    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("arm rest -> pose 3: mean error %.4f, second opinion %d, alternative start %d\n",
                 error.mean, static_cast<int>(result.second_opinion), result.alternative_start);
@@ -499,7 +510,7 @@ std::optional<ArticulatedFaustMatch> articulated_faust_match(const std::string& 
         return std::nullopt;
     }
     const std::filesystem::path faust = *test::data_directory() / "matching" / "faust";
-    MatchOptions options;
+    MatchOptions options = one_reading();
     options.prior = MatchPrior::Articulated;
     options.parts = read_part_model(PartFiles{.tree = faust / "smpl_parts.json",
                                               .labels = faust / "smpl_part_labels.txt",
@@ -556,7 +567,7 @@ TEST(RealPairs, ElephantsLegsEndOnTheirOwnPlaces) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl elephant in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target);
+    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("elephant 100 -> 300: mean error %.4f, %ld stranded (%d pairs exchanged)\n",
                 error.mean, static_cast<long>(error.stranded_count), result.swapped_limbs);
@@ -575,11 +586,11 @@ TEST(RealPairs, SumnerCatsFrontLegsAreExchangedBack) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no Sumner cat in it";
     }
-    MatchOptions options;
+    MatchOptions options = one_reading();
     options.limb_swaps.enabled = false;
     const CorrespondenceError unchecked = correspondence_error(
         match(pair->template_mesh, pair->target, options).deformed.V, pair->truth);
-    const MatchResult result = match(pair->template_mesh, pair->target);
+    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf(
         "Sumner cat 02 -> 05: mean error %.4f, %ld stranded without the check, %.4f, %ld with "
@@ -603,7 +614,7 @@ TEST(RealPairs, ElephantFromRestKeepsTheFitTheTurningFunctionsPrefer) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl elephant in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target);
+    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("elephant rest -> 300: mean error %.4f (%d fits kept)\n", error.mean,
                 result.map_fits);
@@ -623,7 +634,7 @@ TEST(RealPairs, ArticulatedElephantsLimbsEndOnTheirOwnPlaces) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl elephant in it";
     }
     const std::filesystem::path rig = *test::data_directory() / "rigs" / "libigl_elephant";
-    MatchOptions options;
+    MatchOptions options = one_reading();
     options.prior = MatchPrior::Articulated;
     options.parts = read_part_model(PartFiles{.tree = rig / "elephant_rig.json",
                                               .weights = rig / "elephant_bone_weights.txt",
@@ -660,7 +671,7 @@ TEST(RealPairs, SparseTurnedHorseMatches) {
     motion.translation = {-0.06664777173316822, 0.035063753554533776, -0.07590975827316204};
     pair->target.V = motion.apply(pair->target.V);
     pair->truth.V = motion.apply(pair->truth.V);
-    const MatchResult result = match(pair->template_mesh, pair->target);
+    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("sparse horse: %ld target vertices, mean error %.4f, %ld stranded\n",
                 static_cast<long>(pair->target.V.rows()), error.mean,

@@ -154,6 +154,14 @@ struct MapFitOptions {
     int max_fits = 6;
 };
 
+/// The signatures' reading (src/matching/signatures_reading.h): the match made again with the
+/// eigenfunctions off (MatchOptions::guided.eigenfunction_guidance = 0); of the two, the one
+/// whose map commutes better with the surfaces' Laplacians (laplacian_commutativity()) is kept.
+/// The eigenfunctions are only as right as the map that carried them.
+struct SignaturesReadingOptions {
+    bool enabled = true;
+};
+
 /// Parameters of match(). Every length is relative to the meshes, so the defaults need no
 /// tuning per pair. Each stage of the pipeline has its options and an `enabled` switch; what each
 /// was measured to do: docs/matching.md, "Options".
@@ -190,6 +198,7 @@ struct MatchOptions {
     RefinementOptions refinement;
     TurnBackOptions turn_back;
     MapFitOptions map_fit;
+    SignaturesReadingOptions signatures_reading;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
     /// The template's parts (required by the articulated prior; joint centres in the template's own
@@ -210,8 +219,9 @@ struct MatchOptions {
     /// them reports, possibly from another thread than the caller's, and the others stop when
     /// it is told to: the callback is never called twice at once.
     std::function<bool(const MatchProgress&)> progress = {};
-    /// Called with each level's result after each stage (MatchStage), from the calling thread.
-    /// Optional; it does not change the match.
+    /// Called with each level's result after each stage (MatchStage), from the calling thread;
+    /// the signatures' reading's stages follow the first reading's. Optional; it does not change
+    /// the match.
     std::function<void(const MatchStage&)> stages = {};
 };
 
@@ -264,6 +274,11 @@ struct MatchResult {
     /// refined level (0 if no match from the exchanges was kept, or none was tried). The other
     /// fields say where the coarsest result it started from came from.
     int swapped_limbs = 0;
+    /// Whether the signatures' reading was kept (MatchOptions::signatures_reading), and the
+    /// commutativity of each reading's map (laplacian_commutativity()), where it ran.
+    bool signatures_reading = false;
+    std::optional<double> first_commutativity;
+    std::optional<double> signatures_commutativity;
     /// How far the coarsest level's result disagrees with the target intrinsically (the
     /// median heat-kernel-signature discrepancy of where its vertices landed, over the
     /// consistency of the functional map that placement implies; the measure that chooses
