@@ -56,6 +56,27 @@ FlowResult LevelFlows::flow(int l, const TriangleMesh& moved, int iterations,
                             const Similarity& placement, MatchPrior prior,
                             const PointDescriptors& descriptors, double stretch_weight,
                             bool reports) const {
+    if (memo_ == nullptr || l != coarsest()) {
+        return run_flow(l, moved, iterations, placement, prior, descriptors, stretch_weight,
+                        reports);
+    }
+    const FlowRequest request{l,     &moved.V,     iterations,    &placement,
+                              prior, &descriptors, stretch_weight};
+    if (std::optional<FlowResult> seen = memo_->find(request)) {
+        return std::move(*seen);
+    }
+    FlowResult result =
+        run_flow(l, moved, iterations, placement, prior, descriptors, stretch_weight, reports);
+    if (!cancelled_) {  // a cancelled flow stopped short
+        memo_->keep(request, result);
+    }
+    return result;
+}
+
+FlowResult LevelFlows::run_flow(int l, const TriangleMesh& moved, int iterations,
+                                const Similarity& placement, MatchPrior prior,
+                                const PointDescriptors& descriptors, double stretch_weight,
+                                bool reports) const {
     const Level& level = pyramid_[static_cast<std::size_t>(l)];
     std::optional<PartModel> parts;
     if (options_.parts) {  // this level's weights, joints moved with the template

@@ -11,6 +11,7 @@
 #include "genflow/energies/pseudo_hausdorff_energy.h"
 #include "genflow/flows/flow.h"
 #include "genflow/matching/match.h"
+#include "matching/flow_memo.h"
 #include "matching/prepare.h"
 
 namespace genflow::detail {
@@ -22,10 +23,15 @@ class LevelFlows {
 public:
     /// Flows on the levels of `pyramid` (finest first) with `options`; `diagonal` is the
     /// target's bounding-box diagonal. A flow whose progress call returns false sets
-    /// `cancelled`, which stops the others. All are kept by reference.
+    /// `cancelled`, which stops the others. `memo`, if given, answers the coarsest level's flows
+    /// it has seen and keeps those it has not (flow_memo.h). All are kept by reference.
     LevelFlows(const std::vector<Level>& pyramid, const MatchOptions& options, double diagonal,
-               std::atomic<bool>& cancelled)
-        : pyramid_(pyramid), options_(options), diagonal_(diagonal), cancelled_(cancelled) {}
+               std::atomic<bool>& cancelled, FlowMemo* memo = nullptr)
+        : pyramid_(pyramid),
+          options_(options),
+          diagonal_(diagonal),
+          cancelled_(cancelled),
+          memo_(memo) {}
 
     /// d_H to a level's target, with ε that many times its mean edge length.
     [[nodiscard]] PseudoHausdorffEnergy distance_to_target(
@@ -51,10 +57,17 @@ public:
 private:
     [[nodiscard]] int count() const { return static_cast<int>(pyramid_.size()); }
 
+    /// flow() without the memo.
+    [[nodiscard]] FlowResult run_flow(int l, const TriangleMesh& moved, int iterations,
+                                      const Similarity& placement, MatchPrior prior,
+                                      const PointDescriptors& descriptors, double stretch_weight,
+                                      bool reports) const;
+
     const std::vector<Level>& pyramid_;
     const MatchOptions& options_;
     double diagonal_;
     std::atomic<bool>& cancelled_;
+    FlowMemo* memo_;
 };
 
 }  // namespace genflow::detail

@@ -14,6 +14,7 @@
 #include "matching/carried_back.h"
 #include "matching/coarsest_level.h"
 #include "matching/finer_levels.h"
+#include "matching/flow_memo.h"
 #include "matching/guided_rounds.h"
 #include "matching/level_flow.h"
 #include "matching/prepare.h"
@@ -136,7 +137,7 @@ namespace {
 MatchResult read_match(const detail::Prepared& prepared,
                        const detail::SpectralDescriptors* analysis,
                        const TriangleMesh& template_mesh, const MatchOptions& options,
-                       double diagonal, std::atomic<bool>& cancelled) {
+                       double diagonal, std::atomic<bool>& cancelled, detail::FlowMemo& memo) {
     MatchResult result;
     result.alignment_seconds = prepared.alignment_seconds;
     const std::vector<detail::Level>& pyramid = prepared.pyramid;
@@ -144,7 +145,7 @@ MatchResult read_match(const detail::Prepared& prepared,
 
     // The coarsest level: the template put on the target as a whole (coarsest_level.h).
     const auto clock = std::chrono::steady_clock::now();
-    const detail::LevelFlows flows(pyramid, options, diagonal, cancelled);
+    const detail::LevelFlows flows(pyramid, options, diagonal, cancelled, &memo);
     detail::CoarsestMatch coarsest =
         detail::match_coarsest_level(prepared, flows, analysis, options, diagonal, cancelled);
     result.initial_alignment = coarsest.start;
@@ -179,12 +180,13 @@ MatchResult read_match(const detail::Prepared& prepared,
 }
 
 // The signatures' reading (signatures_reading.h) beside `first`: the one whose map commutes
-// better is returned. Without the eigenbases (Lanczos did not converge) the first stands.
+// better is returned. Without the eigenbases (Lanczos did not converge) the first stands. The
+// flows the first reading ran unguided by the eigenfunctions come from `memo`.
 MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
                             const detail::SpectralDescriptors* analysis,
                             const TriangleMesh& template_mesh, const TriangleMesh& target,
                             const MatchOptions& options, double diagonal,
-                            std::atomic<bool>& cancelled) {
+                            std::atomic<bool>& cancelled, detail::FlowMemo& memo) {
     std::optional<detail::ReadingJudge> judge;
     try {
         judge.emplace(template_mesh, target);
@@ -193,7 +195,7 @@ MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
     }
     MatchResult reading =
         read_match(prepared, analysis, template_mesh, detail::signatures_reading_options(options),
-                   diagonal, cancelled);
+                   diagonal, cancelled, memo);
     if (cancelled) {
         return first;
     }
@@ -228,11 +230,12 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
 
     // The match, read with the eigenfunctions and, where they guide it, with the signatures.
     std::atomic<bool> cancelled = false;
+    detail::FlowMemo memo;
     MatchResult result =
-        read_match(prepared, analysis, template_mesh, options, diagonal, cancelled);
+        read_match(prepared, analysis, template_mesh, options, diagonal, cancelled, memo);
     if (detail::reads_with_signatures(options) && !cancelled) {
         result = judged_readings(std::move(result), prepared, analysis, template_mesh, target,
-                                 options, diagonal, cancelled);
+                                 options, diagonal, cancelled, memo);
     }
     result.levels.front().seconds += analysis_seconds;
     result.seconds = detail::seconds_since(start);

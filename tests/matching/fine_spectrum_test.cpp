@@ -86,7 +86,8 @@ TEST(FineSpectrum, RefusesAPlacementOfAnotherSizeAndNoFirstFunction) {
 }
 
 // Rows of small integers make every distance exact, so that ties are real: the nearest row is
-// the first of the closest, as a scan finds it. 2100 rows cross the blocks nearest_rows() works in.
+// the first of the closest, as a scan finds it. 2100 rows and 300 columns cross the tiles
+// nearest_rows() works in.
 TEST(FunctionalMap, NearestRowsAreTheFirstClosest) {
     std::srand(7);
     const auto small_integers = [](Eigen::Index rows) {

@@ -30,6 +30,7 @@
 #include "matching/selection.h"
 #include "matching/spectral_descriptors.h"
 #include "spatial/point_index.h"
+#include "support/match_options.h"
 #include "support/test_meshes.h"
 
 namespace genflow {
@@ -76,21 +77,13 @@ Eigen::MatrixX3d mirrored_beyond(const BentLimbPair& pair, double above,
     return placed;
 }
 
-// The defaults with one reading: the signatures' reading makes every match twice, and has its
-// own test (Match.SignaturesReadingKeepsTheReadingThatCommutesBetter).
-MatchOptions one_reading_options() {
-    MatchOptions options;
-    options.signatures_reading.enabled = false;
-    return options;
-}
-
 // Options for matching the bent limb as given (no global alignment) with one reading, one
 // candidate of the last guided round and no second opinion: fewer flows to wait for where a
 // test is about something else (the candidates have
 // Match.StiffnessAndGuidanceCandidatesKeepOneAndReportIt, the second opinion
 // Match.SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss).
 MatchOptions one_candidate_options() {
-    MatchOptions options = one_reading_options();
+    MatchOptions options = test::one_reading_options();
     options.starts.enabled = false;
     options.guided.stiffness_candidates = 1;
     options.guided.guidance_candidates = 1;
@@ -615,7 +608,7 @@ TEST(Match, IsometricPriorBendsWithoutPartsAndKeepsEdgeLengths) {
     const BentLimbPair pair;
     const TriangleMesh& template_mesh = pair.template_mesh;
     const auto strain = [&](const MatchResult& r) { return mean_edge_strain(template_mesh, r); };
-    MatchOptions options = one_reading_options();
+    MatchOptions options = test::one_reading_options();
     options.starts.enabled = false;
     options.prior = MatchPrior::Isometric;
     options.isometric.refresh_interval = 1;  // the prior itself, not its faster lagged form
@@ -1097,7 +1090,7 @@ TEST(Match, SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss) {
     const test::PosedSpikedFigure figure;
     ASSERT_GT(MatchOptions{}.second_opinion.alternative_starts, 0);
     expect_second_opinion_kept(
-        figure, match(figure.template_mesh, figure.target, one_reading_options()), false);
+        figure, match(figure.template_mesh, figure.target, test::one_reading_options()), false);
 }
 
 // Asked only of results that disagree more than second_opinion_above, the second opinion comes
@@ -1107,7 +1100,7 @@ TEST(Match, SecondOpinionFromTheIntrinsicStartMatchesWhatTheRigidStartsMiss) {
 // 5 minutes of the sanitizers' run for three), and the result is still right.
 TEST(Match, DisagreeingMatchTakesTheSecondOpinionAfterTheRigidStarts) {
     const test::PosedSpikedFigure figure;
-    MatchOptions options = one_reading_options();
+    MatchOptions options = test::one_reading_options();
     options.second_opinion.above = 0.14;
     options.second_opinion.alternative_starts_above = 0.1;
     options.second_opinion.alternative_starts = 1;

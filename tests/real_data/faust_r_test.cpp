@@ -15,6 +15,7 @@
 #include "genflow/io/read_reference_points.h"
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/match.h"
+#include "support/match_options.h"
 #include "support/test_meshes.h"
 
 namespace genflow {
@@ -63,9 +64,7 @@ TEST(FaustR, BodyKeptFromARigidStartIsMatchedAgainFromTheAlternativeStarts) {
     if (!from || !to) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no FAUST_r training split in it";
     }
-    MatchOptions options;
-    options.signatures_reading.enabled = false;
-    const MatchResult result = match(from->mesh, to->mesh, options);
+    const MatchResult result = match(from->mesh, to->mesh, test::one_reading_options());
     const double error = benchmark_error(*from, *to, result);
     std::printf("FAUST_r 009 -> 057: error x100 %.2f, alternative start %d of %d\n", 100 * error,
                 result.alternative_start, result.alternative_starts);

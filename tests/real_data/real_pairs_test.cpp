@@ -26,6 +26,7 @@
 #include "genflow/operators/mesh_size.h"
 #include "genflow/operators/normals.h"
 #include "matching/intrinsic_start.h"
+#include "support/match_options.h"
 #include "support/test_meshes.h"
 
 namespace genflow {
@@ -35,13 +36,6 @@ namespace {
 // (correspondence_error()) are a few points off a joint (the articulated libigl arm: 4 of 8.3K,
 // 9 % off, where the forearm meets the upper arm). The h1 matches of `pairs.json` strand at most 4.
 constexpr double kStrandedFraction = 0.005;
-
-// The defaults with one reading (MatchOptions::signatures_reading off).
-MatchOptions one_reading() {
-    MatchOptions options;
-    options.signatures_reading.enabled = false;
-    return options;
-}
 
 // One pair of $GENFLOW_DATA/pairs.json, read: template, remeshed target in another pose, and
 // ground truth.
@@ -74,7 +68,7 @@ std::optional<DataPair> named_pair(const std::string& name) {
 
 // match() with its defaults (or `options`) on `pair`: its error against the ground truth.
 CorrespondenceError default_match_error(const DataPair& pair,
-                                        const MatchOptions& options = one_reading()) {
+                                        const MatchOptions& options = test::one_reading_options()) {
     const MatchResult result = match(pair.template_mesh, pair.target, options);
     CorrespondenceError error = correspondence_error(result.deformed.V, pair.truth);
     std::printf(
@@ -86,7 +80,7 @@ CorrespondenceError default_match_error(const DataPair& pair,
 
 // The same on the pair so named; nothing without the data or that pair.
 std::optional<CorrespondenceError> default_match_error(
-    const std::string& name, const MatchOptions& options = one_reading()) {
+    const std::string& name, const MatchOptions& options = test::one_reading_options()) {
     const std::optional<DataPair> pair = named_pair(name);
     if (!pair) {
         return std::nullopt;
@@ -185,7 +179,7 @@ TEST(RealPairs, FullBodyKeepsItsHeadOnStraight) {
 // tells them apart, and then in its own: 0.44 %, 5 vertices stranded, 4.0 % of the area turned
 // over.
 TEST(RealPairs, IsometricBodyIsNotTurnedFrontToBack) {
-    MatchOptions options = one_reading();
+    MatchOptions options = test::one_reading_options();
     options.prior = MatchPrior::Isometric;
     const std::optional<CorrespondenceError> error =
         default_match_error("tosca_michael_0_1", options);
@@ -253,7 +247,7 @@ TEST(RealPairs, ArticulatedArmEndsUntwisted) {
     }
     const TriangleMesh template_mesh = read_mesh(rig / "arm_rest.ply");
     const TriangleMesh truth = read_mesh(rig / "arm_pose2.ply");
-    MatchOptions options = one_reading();
+    MatchOptions options = test::one_reading_options();
     options.prior = MatchPrior::Articulated;
     options.parts =
         read_part_model(PartFiles{rig / "arm_rig.json", std::nullopt, rig / "arm_bone_weights.txt"},
@@ -282,7 +276,8 @@ TEST(RealPairs, ArmTurnedOverAndShrunkMatchesAsItIs) {
     motion.scale = 0.003;
     pair->target.V = motion.apply(pair->target.V);
     pair->truth.V = motion.apply(pair->truth.V);
-    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
+    const MatchResult result =
+        match(pair->template_mesh, pair->target, test::one_reading_options());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("arm turned over and shrunk: mean error %.4f, %ld stranded\n", error.mean,
                 static_cast<long>(error.stranded_count));
@@ -335,7 +330,7 @@ TEST(RealPairs, RoughBodyIsChosenOnItsTargetSmoothed) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no tosca_michael_0_1 in it";
     }
     const MatchResult result =
-        match(pair->template_mesh, rough(pair->target, 0.005), one_reading());
+        match(pair->template_mesh, rough(pair->target, 0.005), test::one_reading_options());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("rough michael: mean error %.4f, %ld stranded\n", error.mean,
                 static_cast<long>(error.stranded_count));
@@ -418,7 +413,8 @@ TEST(RealPairs, KneelingManIsMatchedAtHisSize) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no TOSCA michael in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
+    const MatchResult result =
+        match(pair->template_mesh, pair->target, test::one_reading_options());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("kneeling man from pose 0: mean error %.4f, disagreement %.3f\n", error.mean,
                 result.intrinsic_disagreement.value_or(-1));
@@ -441,7 +437,8 @@ TEST(RealPairs, KneelingManFromAnotherPoseGetsAnAlternativeStart) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no TOSCA michael in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
+    const MatchResult result =
+        match(pair->template_mesh, pair->target, test::one_reading_options());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("kneeling man from pose 1: mean error %.4f, alternative start %d of %d\n",
                 error.mean, result.alternative_start, result.alternative_starts);
@@ -465,7 +462,8 @@ TEST(RealPairs, KneelingManStandsUpGuidedByTheSignaturesAlone) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no TOSCA michael in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
+    const MatchResult result =
+        match(pair->template_mesh, pair->target, test::one_reading_options());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("kneeling man to standing: mean error %.4f, signatures alone %d\n", error.mean,
                 static_cast<int>(result.signature_fallback));
@@ -487,7 +485,8 @@ TEST(RealPairs, HeldOutArmTakesTheIntrinsicStartNearATie) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl arm in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
+    const MatchResult result =
+        match(pair->template_mesh, pair->target, test::one_reading_options());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("arm rest -> pose 3: mean error %.4f, second opinion %d, alternative start %d\n",
                 error.mean, static_cast<int>(result.second_opinion), result.alternative_start);
@@ -510,7 +509,7 @@ std::optional<ArticulatedFaustMatch> articulated_faust_match(const std::string& 
         return std::nullopt;
     }
     const std::filesystem::path faust = *test::data_directory() / "matching" / "faust";
-    MatchOptions options = one_reading();
+    MatchOptions options = test::one_reading_options();
     options.prior = MatchPrior::Articulated;
     options.parts = read_part_model(PartFiles{.tree = faust / "smpl_parts.json",
                                               .labels = faust / "smpl_part_labels.txt",
@@ -567,7 +566,8 @@ TEST(RealPairs, ElephantsLegsEndOnTheirOwnPlaces) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl elephant in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
+    const MatchResult result =
+        match(pair->template_mesh, pair->target, test::one_reading_options());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("elephant 100 -> 300: mean error %.4f, %ld stranded (%d pairs exchanged)\n",
                 error.mean, static_cast<long>(error.stranded_count), result.swapped_limbs);
@@ -586,11 +586,12 @@ TEST(RealPairs, SumnerCatsFrontLegsAreExchangedBack) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no Sumner cat in it";
     }
-    MatchOptions options = one_reading();
+    MatchOptions options = test::one_reading_options();
     options.limb_swaps.enabled = false;
     const CorrespondenceError unchecked = correspondence_error(
         match(pair->template_mesh, pair->target, options).deformed.V, pair->truth);
-    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
+    const MatchResult result =
+        match(pair->template_mesh, pair->target, test::one_reading_options());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf(
         "Sumner cat 02 -> 05: mean error %.4f, %ld stranded without the check, %.4f, %ld with "
@@ -614,7 +615,8 @@ TEST(RealPairs, ElephantFromRestKeepsTheFitTheTurningFunctionsPrefer) {
     if (!pair) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl elephant in it";
     }
-    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
+    const MatchResult result =
+        match(pair->template_mesh, pair->target, test::one_reading_options());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("elephant rest -> 300: mean error %.4f (%d fits kept)\n", error.mean,
                 result.map_fits);
@@ -634,7 +636,7 @@ TEST(RealPairs, ArticulatedElephantsLimbsEndOnTheirOwnPlaces) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no libigl elephant in it";
     }
     const std::filesystem::path rig = *test::data_directory() / "rigs" / "libigl_elephant";
-    MatchOptions options = one_reading();
+    MatchOptions options = test::one_reading_options();
     options.prior = MatchPrior::Articulated;
     options.parts = read_part_model(PartFiles{.tree = rig / "elephant_rig.json",
                                               .weights = rig / "elephant_bone_weights.txt",
@@ -671,7 +673,8 @@ TEST(RealPairs, SparseTurnedHorseMatches) {
     motion.translation = {-0.06664777173316822, 0.035063753554533776, -0.07590975827316204};
     pair->target.V = motion.apply(pair->target.V);
     pair->truth.V = motion.apply(pair->truth.V);
-    const MatchResult result = match(pair->template_mesh, pair->target, one_reading());
+    const MatchResult result =
+        match(pair->template_mesh, pair->target, test::one_reading_options());
     const CorrespondenceError error = correspondence_error(result.deformed.V, pair->truth);
     std::printf("sparse horse: %ld target vertices, mean error %.4f, %ld stranded\n",
                 static_cast<long>(pair->target.V.rows()), error.mean,
