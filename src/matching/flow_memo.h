@@ -7,7 +7,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <cstdint>
 #include <mutex>
 #include <optional>
 #include <vector>
@@ -47,7 +46,6 @@ public:
 
 private:
     struct Entry {
-        std::uint64_t fingerprint = 0;
         int level = 0;
         Eigen::MatrixX3d start;
         int iterations = 0;
@@ -57,8 +55,11 @@ private:
         double stretch_weight = 0;
         FlowResult result;
 
-        [[nodiscard]] bool answers(std::uint64_t print, const FlowRequest& request) const;
+        [[nodiscard]] bool answers(const FlowRequest& request) const;
     };
+
+    /// The entry that answers `request`, or null; the caller holds `mutex_`.
+    [[nodiscard]] const Entry* entry_for(const FlowRequest& request) const;
 
     mutable std::mutex mutex_;
     std::vector<Entry> entries_;

@@ -1,19 +1,15 @@
 // SPDX-License-Identifier: MIT
-// FlowMemo: a flow's result found again for the same request and for no other; LevelFlows
-// answering the coarsest level's repeated flows from it, equal to the bit to the flow run anew.
+// FlowMemo: a flow's result found again for the same request and for no other (LevelFlows
+// answering from it: stages_test.cpp).
 #include "matching/flow_memo.h"
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
 #include <functional>
 #include <optional>
 
 #include "genflow/mesh/primitives.h"
-#include "genflow/operators/mesh_size.h"
-#include "matching/level_flow.h"
-#include "matching/prepare.h"
 
 namespace genflow::detail {
 namespace {
@@ -97,53 +93,6 @@ TEST(FlowMemo, KeepsTheFirstResultOfARequest) {
     other.steps = 99;
     memo.keep(inputs.request(), other);
     EXPECT_EQ(memo.find(inputs.request())->steps, 7);
-}
-
-// The generated limb and another sampling of it, moved, prepared with a small coarsest level.
-struct PreparedLimb {
-    TriangleMesh template_mesh = make_limb(4);
-    TriangleMesh target = make_limb(4, 5);
-    MatchOptions options;
-    Prepared prepared;
-
-    PreparedLimb() {
-        target.V.rowwise() += Eigen::RowVector3d(0.3, -0.2, 0.1);
-        options.coarse_vertices = 300;
-        prepared = prepare(template_mesh, target, options);
-    }
-};
-
-// A repeated coarsest flow comes from the memo, equal to the bit to the flow run anew; a finer
-// level's flows are not kept (the large ones, which the readings do not repeat).
-TEST(LevelFlows, AnswerTheCoarsestLevelsRepeatedFlowsFromTheMemo) {
-    const PreparedLimb limb;
-    ASSERT_GE(limb.prepared.pyramid.size(), 2U);
-    const double diagonal = bounding_box_diagonal(limb.target);
-    std::atomic<bool> cancelled = false;
-    FlowMemo memo;
-    const LevelFlows memoized(limb.prepared.pyramid, limb.options, diagonal, cancelled, &memo);
-    const LevelFlows plain(limb.prepared.pyramid, limb.options, diagonal, cancelled);
-    const int coarsest = memoized.coarsest();
-    const TriangleMesh& start = limb.prepared.pyramid.back().template_mesh;
-
-    const FlowResult first = memoized.flow(coarsest, start, 25, {}, MatchPrior::H1, {}, 0.1);
-    const FlowResult again = memoized.flow(coarsest, start, 25, {}, MatchPrior::H1, {}, 0.1);
-    const FlowResult anew = plain.flow(coarsest, start, 25, {}, MatchPrior::H1, {}, 0.1);
-    EXPECT_EQ(memo.reused(), 1);
-    EXPECT_GT(first.steps, 0);
-    for (const FlowResult* result : {&again, &anew}) {
-        EXPECT_EQ(result->mesh.V, first.mesh.V);
-        EXPECT_EQ(result->energy, first.energy);
-        EXPECT_EQ(result->steps, first.steps);
-    }
-    const FlowResult longer = memoized.flow(coarsest, start, 26, {}, MatchPrior::H1, {}, 0.1);
-    EXPECT_EQ(memo.reused(), 1);
-    EXPECT_GE(longer.steps, first.steps);
-
-    const TriangleMesh& finest = limb.prepared.pyramid.front().template_mesh;
-    (void)memoized.flow(0, finest, 3, {}, MatchPrior::H1);
-    (void)memoized.flow(0, finest, 3, {}, MatchPrior::H1);
-    EXPECT_EQ(memo.reused(), 1);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The matcher's stages on a generated pair: prepare() (rigid starts, pyramid), the flow of one
-// level (LevelFlows), the guided rounds, the coarsest level and the finer levels.
+// level (LevelFlows, with its memo), the guided rounds, the coarsest level and the finer levels.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -12,6 +12,7 @@
 #include "genflow/operators/mesh_size.h"
 #include "matching/coarsest_level.h"
 #include "matching/finer_levels.h"
+#include "matching/flow_memo.h"
 #include "matching/guided_rounds.h"
 #include "matching/level_flow.h"
 #include "matching/prepare.h"
@@ -90,6 +91,42 @@ TEST(LevelFlows, LowerTheDistanceAndStopWhenCancelled) {
     EXPECT_EQ(stopped.status, FlowStatus::Cancelled);
     EXPECT_EQ(stopped.steps, 3);
     EXPECT_TRUE(cancelled);
+}
+
+// A repeated coarsest flow comes from the memo, equal to the bit to the flow run anew; a finer
+// level's flows are not kept (the large ones, which the readings do not repeat).
+TEST(LevelFlows, AnswerTheCoarsestLevelsRepeatedFlowsFromTheMemo) {
+    const MovedLimb pair;
+    MatchOptions options;
+    options.coarse_vertices = 300;
+    const Prepared prepared = prepare(pair.template_mesh, pair.target, options);
+    ASSERT_GE(prepared.pyramid.size(), 2U);
+    const double diagonal = bounding_box_diagonal(pair.target);
+    std::atomic<bool> cancelled = false;
+    FlowMemo memo;
+    const LevelFlows memoized(prepared.pyramid, options, diagonal, cancelled, &memo);
+    const LevelFlows plain(prepared.pyramid, options, diagonal, cancelled);
+    const int coarsest = memoized.coarsest();
+    const TriangleMesh& start = prepared.pyramid.back().template_mesh;
+
+    const FlowResult first = memoized.flow(coarsest, start, 25, {}, MatchPrior::H1, {}, 0.1);
+    const FlowResult again = memoized.flow(coarsest, start, 25, {}, MatchPrior::H1, {}, 0.1);
+    const FlowResult anew = plain.flow(coarsest, start, 25, {}, MatchPrior::H1, {}, 0.1);
+    EXPECT_EQ(memo.reused(), 1);
+    EXPECT_GT(first.steps, 0);
+    for (const FlowResult* result : {&again, &anew}) {
+        EXPECT_EQ(result->mesh.V, first.mesh.V);
+        EXPECT_EQ(result->energy, first.energy);
+        EXPECT_EQ(result->steps, first.steps);
+    }
+    const FlowResult longer = memoized.flow(coarsest, start, 26, {}, MatchPrior::H1, {}, 0.1);
+    EXPECT_EQ(memo.reused(), 1);
+    EXPECT_GE(longer.steps, first.steps);
+
+    const TriangleMesh& finest = prepared.pyramid.front().template_mesh;
+    (void)memoized.flow(0, finest, 3, {}, MatchPrior::H1);
+    (void)memoized.flow(0, finest, 3, {}, MatchPrior::H1);
+    EXPECT_EQ(memo.reused(), 1);
 }
 
 // A pair prepared with short flows, for the stages after prepare().
