@@ -166,6 +166,8 @@ struct PairMap {
     std::vector<SurfacePoint> points;  // per template vertex
     double seconds = 0;
     nlohmann::json details = nlohmann::json::object();  // what the method reports of itself
+    // A match's closest points, where its counterparts are not they (match_correspondence()).
+    std::vector<SurfacePoint> closest = {};
 };
 
 // The map of `method`: the deformed template's closest points ("match"), or the intrinsic
@@ -180,7 +182,8 @@ PairMap map_of(const std::string& method, const Shape& from, const Shape& to,
                 {{"orientation_ratio", map.orientation_ratio}, {"basis_size", map.basis_size}}};
     }
     const MatchResult result = match(from.mesh, to.mesh, options);
-    return {closest_points(result.deformed.V, to.mesh), result.seconds, match_choices(result)};
+    return {match_correspondence(result, to.mesh), result.seconds, match_choices(result),
+            closest_points(result.deformed.V, to.mesh)};
 }
 
 // Maps one pair and measures it; writes the map of every template vertex to `map_file`
@@ -203,6 +206,10 @@ nlohmann::json run_pair(const Shape& from, const Shape& to, bool within,
                           {"histogram", histogram_of(errors.to_vertex)},
                           {"seconds", result.seconds},
                           {"details", result.details}};
+    if (!result.closest.empty()) {
+        row["mean_closest_points"] =
+            mean_of(measure.errors_at(result.closest, from.reference, to.reference).to_vertex);
+    }
     if (symmetry.found()) {
         std::vector<Eigen::Index> mirrored(to.reference.size());
         for (std::size_t k = 0; k < mirrored.size(); ++k) {

@@ -76,7 +76,8 @@ void add_second_opinion_option(CLI::App& command, double& threshold) {
 
 namespace {
 
-nlohmann::json number_or_null(const std::optional<double>& value) {
+template <typename Number>
+nlohmann::json number_or_null(const std::optional<Number>& value) {
     return value ? nlohmann::json(*value) : nlohmann::json();
 }
 
@@ -98,7 +99,8 @@ nlohmann::json match_choices(const MatchResult& result) {
             {"swapped_limbs", result.swapped_limbs},
             {"signatures_reading", result.signatures_reading},
             {"first_commutativity", number_or_null(result.first_commutativity)},
-            {"signatures_commutativity", number_or_null(result.signatures_commutativity)}};
+            {"signatures_commutativity", number_or_null(result.signatures_commutativity)},
+            {"counterparts_moved", number_or_null(result.counterparts_moved)}};
 }
 
 }  // namespace genflow::cli

@@ -150,6 +150,16 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
                      "Do not make the match again with the eigenfunctions off (guided by the "
                      "heat kernel signatures alone), whose result is kept if its map commutes "
                      "better with the surfaces' Laplacians");
+    command.add_flag("--counterparts", flags.match.counterparts.enabled,
+                     "Give each template vertex as its counterpart (--correspondence) the point "
+                     "near where the match put it that the eigenfunctions agree with, not the "
+                     "target's closest point");
+    command
+        .add_option("--counterpart-reach", flags.match.counterparts.reach,
+                    "How far, over the target's square root of area, a counterpart may be from "
+                    "where the match put the vertex")
+        ->check(CLI::Range(1e-6, 10.0))
+        ->capture_default_str();
     command.add_flag("--no-turn-back", flags.no_turn_back,
                      "Do not turn back the parts that a fine functional map (60 eigenfunctions) "
                      "places turned over in their own place (a hand palm for back) after the "

@@ -92,7 +92,7 @@ nlohmann::json run_match_job(MatchJob job) {
 
     write_mesh(job.output, result.deformed);
     if (job.correspondence) {
-        write_correspondences(*job.correspondence, closest_points(result.deformed.V, job.target));
+        write_correspondences(*job.correspondence, match_correspondence(result, job.target));
         summary["correspondence"] = job.correspondence->string();
     }
     if (job.summary) {

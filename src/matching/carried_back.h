@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 
+#include "genflow/mesh.h"
 #include "genflow/mesh/repair.h"
 
 namespace genflow::detail {
@@ -16,5 +17,16 @@ namespace genflow::detail {
 [[nodiscard]] Eigen::MatrixX3d carried_back(const RepairedSurface& repaired,
                                             const Eigen::MatrixX3d& input_rest,
                                             const Eigen::MatrixX3d& positions);
+
+/// The counterparts (MatchResult::counterparts) of every vertex of the input of
+/// repair_surface() from `counterparts` of the repaired surface's vertices: a carried vertex
+/// takes its repaired vertex's; any other the closest point of `target` to `deformed` (the
+/// input's vertices as carried_back() put them).
+/// \throws InvalidInput if `counterparts` does not have a row per repaired vertex or `deformed`
+///         one per input vertex.
+[[nodiscard]] Eigen::MatrixX3d carried_counterparts(const RepairedSurface& repaired,
+                                                    const Eigen::MatrixX3d& counterparts,
+                                                    const Eigen::MatrixX3d& deformed,
+                                                    const TriangleMesh& target);
 
 }  // namespace genflow::detail

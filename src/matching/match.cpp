@@ -13,7 +13,9 @@
 #include "genflow/operators/mesh_size.h"
 #include "matching/carried_back.h"
 #include "matching/coarsest_level.h"
+#include "matching/counterparts.h"
 #include "matching/finer_levels.h"
+#include "matching/finest_bases.h"
 #include "matching/flow_memo.h"
 #include "matching/guided_rounds.h"
 #include "matching/level_flow.h"
@@ -69,6 +71,7 @@ MatchOptions paper_match_options() {
     options.turn_back.enabled = false;
     options.map_fit.enabled = false;
     options.signatures_reading.enabled = false;
+    options.counterparts.enabled = false;
     return options;
 }
 
@@ -103,7 +106,8 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         std::isnan(options.second_opinion.alternative_starts_above) ||
         options.second_opinion.alternative_starts_above < 0 ||
         !detail::finite_above(options.articulated_finest_global, 0) ||
-        options.articulated_finest_global > 1) {
+        options.articulated_finest_global > 1 ||
+        !detail::finite_above(options.counterparts.reach, 0)) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, h1_length > 0, levels >= 0, coarse_vertices >= 100, "
@@ -115,7 +119,7 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
             "map_fit.max_fits >= 0, second_opinion.above >= 0, "
             "second_opinion.alternative_starts >= 0, second_opinion.alternative_starts_above >= 0 "
             "and "
-            "articulated_finest_global in (0, 1]");
+            "articulated_finest_global in (0, 1], counterparts.reach > 0");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
@@ -185,22 +189,17 @@ MatchResult read_match(const detail::Prepared& prepared,
 MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
                             const detail::SpectralDescriptors* analysis,
                             const TriangleMesh& template_mesh, const TriangleMesh& target,
-                            const MatchOptions& options, double diagonal,
-                            std::atomic<bool>& cancelled, detail::FlowMemo& memo) {
-    std::optional<detail::ReadingJudge> judge;
-    try {
-        judge.emplace(template_mesh, target);
-    } catch (const SolverError&) {
-        return first;
-    }
+                            const detail::FinestBases& bases, const MatchOptions& options,
+                            double diagonal, std::atomic<bool>& cancelled, detail::FlowMemo& memo) {
+    const detail::ReadingJudge judge(bases, target);
     MatchResult reading =
         read_match(prepared, analysis, template_mesh, detail::signatures_reading_options(options),
                    diagonal, cancelled, memo);
     if (cancelled) {
         return first;
     }
-    const double first_commutativity = judge->commutativity(first.deformed.V);
-    const double reading_commutativity = judge->commutativity(reading.deformed.V);
+    const double first_commutativity = judge.commutativity(first.deformed.V);
+    const double reading_commutativity = judge.commutativity(reading.deformed.V);
     MatchResult& kept = detail::keeps_signatures_reading(reading_commutativity, first_commutativity)
                             ? reading
                             : first;
@@ -208,6 +207,21 @@ MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
     kept.first_commutativity = first_commutativity;
     kept.signatures_commutativity = reading_commutativity;
     return std::move(kept);
+}
+
+// The counterparts of `result`'s deformed template on `target` (counterparts.h), or its
+// closest points where the stage is off or the eigenbases could not be had.
+void find_counterparts(MatchResult& result, const TriangleMesh& target,
+                       const detail::FinestBases* bases, const MatchOptions& options) {
+    if (options.counterparts.enabled && bases != nullptr) {
+        detail::Counterparts found =
+            detail::intrinsic_counterparts(bases->template_basis, bases->target_basis, target,
+                                           result.deformed.V, options.counterparts);
+        result.counterparts = std::move(found.points);
+        result.counterparts_moved = found.moved;
+        return;
+    }
+    result.counterparts = detail::closest_counterparts(result.deformed.V, target);
 }
 
 // match() on surfaces that repair_surface() leaves as they are: the pipeline's stages.
@@ -228,15 +242,24 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     const detail::SpectralDescriptors* analysis = spectral ? &*spectral : nullptr;
     const double analysis_seconds = detail::seconds_since(clock);
 
+    // The finest surfaces' eigenbases, for the stages that read the whole match intrinsically.
+    std::optional<detail::FinestBases> bases;
+    if (detail::reads_with_signatures(options) || options.counterparts.enabled) {
+        bases = detail::finest_bases(template_mesh, target);
+    }
+
     // The match, read with the eigenfunctions and, where they guide it, with the signatures.
     std::atomic<bool> cancelled = false;
     detail::FlowMemo memo;
     MatchResult result =
         read_match(prepared, analysis, template_mesh, options, diagonal, cancelled, memo);
-    if (detail::reads_with_signatures(options) && !cancelled) {
+    if (detail::reads_with_signatures(options) && bases && !cancelled) {
         result = judged_readings(std::move(result), prepared, analysis, template_mesh, target,
-                                 options, diagonal, cancelled, memo);
+                                 *bases, options, diagonal, cancelled, memo);
     }
+
+    // Each template vertex's counterpart on the target.
+    find_counterparts(result, target, bases && !cancelled ? &*bases : nullptr, options);
     result.levels.front().seconds += analysis_seconds;
     result.seconds = detail::seconds_since(start);
     return result;
@@ -260,6 +283,8 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     result.deformed =
         TriangleMesh{detail::carried_back(repaired_template, template_mesh.V, result.deformed.V),
                      template_mesh.F};
+    result.counterparts = detail::carried_counterparts(repaired_template, result.counterparts,
+                                                       result.deformed.V, target);
     result.template_repairs = repaired_template.summary();
     result.target_repairs = repaired_target.summary();
     return result;

@@ -18,13 +18,11 @@ MatchOptions signatures_reading_options(const MatchOptions& options) {
     return signatures;
 }
 
-ReadingJudge::ReadingJudge(const TriangleMesh& template_mesh, const TriangleMesh& target)
-    : target_(target),
-      template_basis_(laplacian_eigenbasis(template_mesh, kCommutativityFunctions + 1)),
-      target_basis_(laplacian_eigenbasis(target, kCommutativityFunctions + 1)) {}
+ReadingJudge::ReadingJudge(const FinestBases& bases, const TriangleMesh& target)
+    : bases_(bases), target_(target) {}
 
 double ReadingJudge::commutativity(const Eigen::MatrixX3d& deformed) const {
-    return laplacian_commutativity(template_basis_, target_, target_basis_,
+    return laplacian_commutativity(bases_.template_basis, target_, bases_.target_basis,
                                    closest_points(deformed, target_));
 }
 

@@ -12,7 +12,7 @@
 
 #include "genflow/matching/match.h"
 #include "genflow/mesh.h"
-#include "genflow/operators/laplacian_eigenbasis.h"
+#include "matching/finest_bases.h"
 
 namespace genflow::detail {
 
@@ -23,21 +23,20 @@ namespace genflow::detail {
 /// The options of the second reading: `options` with the eigenfunctions off.
 [[nodiscard]] MatchOptions signatures_reading_options(const MatchOptions& options);
 
-/// The judge of the readings: the finest template's and target's eigenbases, computed once,
-/// and the commutativity (laplacian_commutativity()) of the map each deformed template implies.
+/// The judge of the readings: the commutativity (laplacian_commutativity()) of the map each
+/// deformed template implies, in the finest template's and target's eigenbases.
 class ReadingJudge {
 public:
-    /// \throws SolverError if the Lanczos iterations do not converge.
-    ReadingJudge(const TriangleMesh& template_mesh, const TriangleMesh& target);
+    /// Keeps all three by reference.
+    ReadingJudge(const FinestBases& bases, const TriangleMesh& target);
 
     /// The commutativity of the map that puts each template vertex on the target's closest
     /// point to where `deformed` puts it.
     [[nodiscard]] double commutativity(const Eigen::MatrixX3d& deformed) const;
 
 private:
+    const FinestBases& bases_;
     const TriangleMesh& target_;
-    LaplacianEigenbasis template_basis_;
-    LaplacianEigenbasis target_basis_;
 };
 
 }  // namespace genflow::detail

@@ -55,6 +55,7 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_TRUE(json["second_opinion_disagreement"].is_null());  // the rigid prior asks none
     EXPECT_EQ(json["swapped_limbs"], 0);                         // nor checks for swapped limbs
     EXPECT_EQ(json["signature_fallback"], false);                // nor has a guided round
+    EXPECT_TRUE(json["counterparts_moved"].is_null());           // the closest points, by default
     EXPECT_LT(json["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.02);
     EXPECT_EQ(json["stranded_vertices"], 0);
     EXPECT_TRUE(json["stranded_vertex_indices"].empty());
@@ -69,6 +70,23 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(lines, template_mesh.V.rows());
     EXPECT_TRUE(std::filesystem::exists(directory / "frames" / "frame_00000.ply"));
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(directory / "summary.json")), json);
+}
+
+// --counterparts gives the vertices their counterparts (and says how many moved from the
+// closest point); --counterpart-reach must be positive.
+TEST(MatchCli, CounterpartsHaveTheirSwitchAndReach) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "template.ply", make_limb(3));
+    write_mesh(directory / "target.ply", make_limb(4, 5));
+    const std::string command =
+        "match " + quoted(directory / "template.ply") + " " + quoted(directory / "target.ply") +
+        " -o " + quoted(directory / "out.ply") + " --prior rigid --iterations 30 --json";
+    const auto on = run_genflow(command + " --counterparts --counterpart-reach 0.1");
+    ASSERT_EQ(on.exit_code, 0) << on.err;
+    EXPECT_GE(nlohmann::json::parse(on.out)["counterparts_moved"].get<long>(), 0);
+    const auto refused = run_genflow(command + " --counterparts --counterpart-reach 0");
+    EXPECT_NE(refused.exit_code, 0);
+    EXPECT_NE(refused.err.find("--counterpart-reach"), std::string::npos) << refused.err;
 }
 
 // --stagnation-tolerance reaches the flows: a loose one stops the coarsest level's flow sooner.

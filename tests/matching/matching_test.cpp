@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -24,6 +26,7 @@
 #include "genflow/mesh/validate.h"
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
+#include "genflow/operators/area.h"
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/parts/part_model.h"
@@ -459,11 +462,56 @@ TEST(Match, EachStageHasItsOwnSwitch) {
     for (bool* enabled :
          {&switched.starts.enabled, &switched.guided.enabled, &switched.second_opinion.enabled,
           &switched.limb_swaps.enabled, &switched.refinement.enabled, &switched.turn_back.enabled,
-          &switched.map_fit.enabled, &switched.signatures_reading.enabled}) {
+          &switched.map_fit.enabled, &switched.signatures_reading.enabled,
+          &switched.counterparts.enabled}) {
         *enabled = false;
     }
-    EXPECT_EQ(match(pair.template_mesh, pair.target, off).deformed.V,
-              match(pair.template_mesh, pair.target, switched).deformed.V);
+    const MatchResult paper = match(pair.template_mesh, pair.target, off);
+    EXPECT_EQ(paper.deformed.V, match(pair.template_mesh, pair.target, switched).deformed.V);
+    // Without the counterparts' stage, a vertex's counterpart is its closest point.
+    EXPECT_FALSE(paper.counterparts_moved.has_value());
+    const std::vector<SurfacePoint> closest = closest_points(paper.deformed.V, pair.target);
+    for (Eigen::Index i = 0; i < paper.deformed.V.rows(); ++i) {
+        ASSERT_EQ(paper.counterparts.row(i).transpose(),
+                  closest[static_cast<std::size_t>(i)].point);
+    }
+}
+
+// Two levels, one reading, no second opinion: a guided match of the limb pair in seconds.
+MatchOptions two_levels_one_reading() {
+    MatchOptions options;
+    options.levels = 2;
+    options.second_opinion.enabled = false;
+    options.signatures_reading.enabled = false;
+    return options;
+}
+
+// The counterparts are vertices of the target near where the match put the template's (within
+// the reach, over the target's √area, beyond the closest point), and the correspondence gives
+// them with the distance from the deformed vertex; the deformed template is the stage-less one.
+TEST(Match, CounterpartsAreTargetVerticesNearTheDeformedTemplate) {
+    const BentLimbPair pair;
+    MatchOptions options = two_levels_one_reading();
+    options.counterparts.enabled = true;
+    const MatchResult result = match(pair.template_mesh, pair.target, options);
+    ASSERT_TRUE(result.counterparts_moved.has_value());
+    options.counterparts.enabled = false;
+    EXPECT_EQ(match(pair.template_mesh, pair.target, options).deformed.V, result.deformed.V);
+
+    const double reach = options.counterparts.reach * std::sqrt(surface_area(pair.target));
+    const std::vector<SurfacePoint> correspondence = match_correspondence(result, pair.target);
+    const std::vector<SurfacePoint> closest = closest_points(result.deformed.V, pair.target);
+    ASSERT_EQ(correspondence.size(), static_cast<std::size_t>(result.deformed.V.rows()));
+    for (Eigen::Index i = 0; i < result.deformed.V.rows(); ++i) {
+        const SurfacePoint& point = correspondence[static_cast<std::size_t>(i)];
+        EXPECT_NEAR(point.barycentric.maxCoeff(), 1, 1e-9) << "not at a vertex: " << i;
+        EXPECT_LT((point.point - result.counterparts.row(i).transpose()).norm(), 1e-12 * reach);
+        EXPECT_NEAR(point.distance, (result.deformed.V.row(i).transpose() - point.point).norm(),
+                    1e-12 * reach);
+        EXPECT_LT(point.distance, closest[static_cast<std::size_t>(i)].distance + reach) << i;
+    }
+    std::printf("counterparts moved: %ld of %ld\n", static_cast<long>(*result.counterparts_moved),
+                static_cast<long>(result.deformed.V.rows()));
 }
 
 // The signatures' reading makes the match again with the eigenfunctions off and keeps the
@@ -471,10 +519,7 @@ TEST(Match, EachStageHasItsOwnSwitch) {
 // matches made alone, the one whose reported commutativity is lower.
 TEST(Match, SignaturesReadingKeepsTheReadingThatCommutesBetter) {
     const BentLimbPair pair;
-    MatchOptions options;
-    options.levels = 2;
-    options.second_opinion.enabled = false;
-    options.signatures_reading.enabled = false;
+    MatchOptions options = two_levels_one_reading();
     const MatchResult first = match(pair.template_mesh, pair.target, options);
     MatchOptions signatures = options;
     signatures.guided.eigenfunction_guidance = 0;
@@ -505,6 +550,7 @@ TEST(Match, MatchesARepairedTemplateAndKeepsItsVertices) {
     MatchOptions options;
     options.prior = MatchPrior::Rigid;
     options.levels = 2;
+    options.counterparts.enabled = true;
     TriangleMesh defective = clean;
     const Eigen::Index n = clean.V.rows();
     const int a = clean.F(0, 0);
@@ -531,6 +577,12 @@ TEST(Match, MatchesARepairedTemplateAndKeepsItsVertices) {
     EXPECT_LT((repaired.deformed.V.topRows(n) - plain.deformed.V).cwiseAbs().maxCoeff(),
               1e-9 * diagonal);
     EXPECT_EQ(repaired.deformed.V.row(n + 1), repaired.deformed.V.row(clean.F(1, 2)));
+    // The counterparts likewise: the left-out fin's tip takes its closest point.
+    ASSERT_EQ(repaired.counterparts.rows(), n + 2);
+    EXPECT_EQ(repaired.counterparts.topRows(n), plain.counterparts);
+    EXPECT_EQ(repaired.counterparts.row(n + 1), repaired.counterparts.row(clean.F(1, 2)));
+    EXPECT_EQ(repaired.counterparts.row(n).transpose(),
+              closest_points(repaired.deformed.V.row(n), target).front().point);
     // The fin's tip moved as the template's vertex nearest to it did.
     Eigen::Index nearest = 0;
     (clean.V.rowwise() - defective.V.row(n)).rowwise().squaredNorm().minCoeff(&nearest);

@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "genflow/matching/match.h"
 #include "genflow/mesh.h"
 #include "genflow/spatial/closest_point.h"
 
@@ -14,5 +15,12 @@ namespace genflow {
 /// \throws InvalidInput as TriangleBvh, or if a point is not finite.
 [[nodiscard]] std::vector<SurfacePoint> closest_points(const Eigen::MatrixX3d& points,
                                                        const TriangleMesh& target);
+
+/// The correspondence of a match: per template vertex its counterpart on `target`
+/// (MatchResult::counterparts) as a surface point, whose `distance` is how far from it the match
+/// put the vertex. Without the counterparts' stage, closest_points() of the deformed template.
+/// \throws InvalidInput if the result's counterparts and deformed template differ in rows.
+[[nodiscard]] std::vector<SurfacePoint> match_correspondence(const MatchResult& result,
+                                                             const TriangleMesh& target);
 
 }  // namespace genflow

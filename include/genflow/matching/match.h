@@ -162,6 +162,19 @@ struct SignaturesReadingOptions {
     bool enabled = true;
 };
 
+/// Each template vertex's counterpart on the target (src/matching/counterparts.h,
+/// MatchResult::counterparts): among the target's points near where the match put the vertex,
+/// the one the Laplacian eigenfunctions agree with, instead of the closest point, which lands on
+/// the wrong one of two parts that touch. The deformed template does not change. Off until
+/// measured on the whole development sample (docs/matching.md, "Counterparts").
+struct CounterpartOptions {
+    bool enabled = false;
+    /// How far, over the target's √area, a counterpart may be from where the match put the
+    /// vertex: a move this long costs as much as the eigenfunctions' mismatch between two
+    /// unrelated points. A few fingers' widths on a body, more than a match is off where right.
+    double reach = 0.05;
+};
+
 /// Parameters of match(). Every length is relative to the meshes, so the defaults need no
 /// tuning per pair. Each stage of the pipeline has its options and an `enabled` switch; what each
 /// was measured to do: docs/matching.md, "Options".
@@ -199,6 +212,7 @@ struct MatchOptions {
     TurnBackOptions turn_back;
     MapFitOptions map_fit;
     SignaturesReadingOptions signatures_reading;
+    CounterpartOptions counterparts;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
     /// The template's parts (required by the articulated prior; joint centres in the template's own
@@ -240,7 +254,14 @@ struct MatchLevel {
 
 /// What match() did, for the report.
 struct MatchResult {
-    TriangleMesh deformed;           ///< the template, deformed (its connectivity unchanged)
+    TriangleMesh deformed;  ///< the template, deformed (its connectivity unchanged)
+    /// Per template vertex, its counterpart: a point of the target's surface, where
+    /// MatchOptions::counterparts put it, else the closest point to where `deformed` puts the
+    /// vertex (match_correspondence() gives them as surface points).
+    Eigen::MatrixX3d counterparts;
+    /// How many template vertices MatchOptions::counterparts gave another target vertex than the
+    /// one nearest to their closest point; nothing where the stage did not run.
+    std::optional<Eigen::Index> counterparts_moved;
     Similarity initial_alignment;    ///< the rigid start (identity without `align`)
     std::vector<MatchLevel> levels;  ///< coarsest first
     double hausdorff_energy = 0;     ///< final d_H on the finest level

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+#include "matching/counterparts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "genflow/exceptions.h"
+#include "genflow/matching/correspondence.h"
+#include "matching/functional_map.h"
+
+namespace genflow::detail {
+
+namespace {
+
+// ZoomOut's first size: a map of 20 functions is coarse but right as a whole wherever the
+// correspondence it is fitted to mostly is. Each step adds 4 functions, where Melzi et al.
+// (2019) add 1: the positions, not the map's size, hold the counterparts in place here.
+constexpr Eigen::Index kFirstSize = 20;
+constexpr Eigen::Index kSizeStep = 4;
+
+void check_inputs(const LaplacianEigenbasis& template_basis,
+                  const LaplacianEigenbasis& target_basis, const TriangleMesh& target,
+                  const Eigen::MatrixX3d& deformed, const CounterpartOptions& options) {
+    const Eigen::Index count = template_basis.functions.cols();
+    if (count < 2 || target_basis.functions.cols() != count ||
+        template_basis.functions.rows() != deformed.rows() ||
+        target_basis.functions.rows() != target.V.rows() ||
+        template_basis.masses.size() != deformed.rows()) {
+        throw InvalidInput("intrinsic_counterparts: the eigenbases (" + std::to_string(count) +
+                           " and " + std::to_string(target_basis.functions.cols()) +
+                           " functions) do not fit the template and the target");
+    }
+    if (!(options.reach > 0) || !std::isfinite(options.reach)) {
+        throw InvalidInput("intrinsic_counterparts: reach must be positive and finite, got " +
+                           std::to_string(options.reach));
+    }
+}
+
+// The sizes ZoomOut fits its maps at: kFirstSize, then by kSizeStep, and `count` last.
+std::vector<Eigen::Index> sizes_up_to(Eigen::Index count) {
+    std::vector<Eigen::Index> sizes;
+    for (Eigen::Index size = std::min(kFirstSize, count); size < count; size += kSizeStep) {
+        sizes.push_back(size);
+    }
+    sizes.push_back(count);
+    return sizes;
+}
+
+// φ √A: functions in units of the surface's own area (mean square 1 on any surface), so
+// that distances between them mean the same on both shapes whatever their sizes.
+Eigen::MatrixXd in_units_of_area(const LaplacianEigenbasis& basis) {
+    return basis.functions * std::sqrt(basis.masses.sum());
+}
+
+// Per point, the corner of its face nearest to it: the vertex map ZoomOut starts from.
+std::vector<Eigen::Index> nearest_corners(const TriangleMesh& target,
+                                          const std::vector<SurfacePoint>& points) {
+    std::vector<Eigen::Index> corners(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const SurfacePoint& p = points[i];
+        Eigen::Index best = target.F(p.face, 0);
+        for (int c = 1; c < 3; ++c) {
+            const Eigen::Index v = target.F(p.face, c);
+            if ((target.V.row(v).transpose() - p.point).squaredNorm() <
+                (target.V.row(best).transpose() - p.point).squaredNorm()) {
+                best = v;
+            }
+        }
+        corners[i] = best;
+    }
+    return corners;
+}
+
+}  // namespace
+
+Eigen::MatrixX3d closest_counterparts(const Eigen::MatrixX3d& deformed,
+                                      const TriangleMesh& target) {
+    const std::vector<SurfacePoint> closest = closest_points(deformed, target);
+    Eigen::MatrixX3d points(deformed.rows(), 3);
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        points.row(i) = closest[static_cast<std::size_t>(i)].point.transpose();
+    }
+    return points;
+}
+
+Counterparts intrinsic_counterparts(const LaplacianEigenbasis& template_basis,
+                                    const LaplacianEigenbasis& target_basis,
+                                    const TriangleMesh& target, const Eigen::MatrixX3d& deformed,
+                                    const CounterpartOptions& options) {
+    check_inputs(template_basis, target_basis, target, deformed, options);
+    const Eigen::MatrixXd from = in_units_of_area(template_basis);
+    const Eigen::VectorXd from_masses = template_basis.masses / template_basis.masses.sum();
+    const Eigen::MatrixXd to = in_units_of_area(target_basis);
+    // Positions in units of the target's √area, as the functions are in units of area.
+    const double unit = std::sqrt(target_basis.masses.sum());
+    const std::vector<SurfacePoint> closest = closest_points(deformed, target);
+    Eigen::MatrixX3d places(deformed.rows(), 3);
+    for (Eigen::Index i = 0; i < places.rows(); ++i) {
+        places.row(i) = closest[static_cast<std::size_t>(i)].point.transpose() / unit;
+    }
+    const Eigen::MatrixX3d vertices = target.V / unit;
+
+    const std::vector<Eigen::Index> start = nearest_corners(target, closest);
+    std::vector<Eigen::Index> correspondence = start;
+    for (const Eigen::Index size : sizes_up_to(from.cols())) {
+        const Eigen::MatrixXd C =
+            fitted_functional_map(from, from_masses, to, correspondence, size);
+        // Two unrelated points differ by about √(2·size) in `size` functions of mean square
+        // 1: a move of `reach` costs as much, so counterparts stay within about that reach.
+        const double weight = std::sqrt(2.0 * static_cast<double>(size)) / options.reach;
+        Eigen::MatrixXd query(from.rows(), size + 3);
+        query << from.leftCols(size) * C, weight * places;
+        Eigen::MatrixXd candidates(to.rows(), size + 3);
+        candidates << to.leftCols(size), weight * vertices;
+        correspondence = nearest_rows(query, candidates);
+    }
+    Counterparts counterparts{target.V(correspondence, Eigen::all), 0};
+    for (std::size_t i = 0; i < start.size(); ++i) {
+        counterparts.moved += correspondence[i] != start[i] ? 1 : 0;
+    }
+    return counterparts;
+}
+
+}  // namespace genflow::detail
