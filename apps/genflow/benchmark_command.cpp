@@ -166,7 +166,7 @@ struct PairMap {
     std::vector<SurfacePoint> points;  // per template vertex
     double seconds = 0;
     nlohmann::json details = nlohmann::json::object();  // what the method reports of itself
-    // A match's closest points, where its counterparts are not they (match_correspondence()).
+    // A match's closest points, where the counterparts' stage chose other points.
     std::vector<SurfacePoint> closest = {};
 };
 
@@ -182,8 +182,11 @@ PairMap map_of(const std::string& method, const Shape& from, const Shape& to,
                 {{"orientation_ratio", map.orientation_ratio}, {"basis_size", map.basis_size}}};
     }
     const MatchResult result = match(from.mesh, to.mesh, options);
-    return {match_correspondence(result, to.mesh), result.seconds, match_choices(result),
-            closest_points(result.deformed.V, to.mesh)};
+    PairMap map{match_correspondence(result, to.mesh), result.seconds, match_choices(result)};
+    if (result.counterparts_moved) {
+        map.closest = closest_points(result.deformed.V, to.mesh);
+    }
+    return map;
 }
 
 // Maps one pair and measures it; writes the map of every template vertex to `map_file`

@@ -54,6 +54,15 @@ Eigen::MatrixXd in_units_of_area(const LaplacianEigenbasis& basis) {
     return basis.functions * std::sqrt(basis.masses.sum());
 }
 
+// The points themselves, a row each.
+Eigen::MatrixX3d positions_of(const std::vector<SurfacePoint>& points) {
+    Eigen::MatrixX3d positions(static_cast<Eigen::Index>(points.size()), 3);
+    for (Eigen::Index i = 0; i < positions.rows(); ++i) {
+        positions.row(i) = points[static_cast<std::size_t>(i)].point.transpose();
+    }
+    return positions;
+}
+
 // Per point, the corner of its face nearest to it: the vertex map ZoomOut starts from.
 std::vector<Eigen::Index> nearest_corners(const TriangleMesh& target,
                                           const std::vector<SurfacePoint>& points) {
@@ -77,12 +86,7 @@ std::vector<Eigen::Index> nearest_corners(const TriangleMesh& target,
 
 Eigen::MatrixX3d closest_counterparts(const Eigen::MatrixX3d& deformed,
                                       const TriangleMesh& target) {
-    const std::vector<SurfacePoint> closest = closest_points(deformed, target);
-    Eigen::MatrixX3d points(deformed.rows(), 3);
-    for (Eigen::Index i = 0; i < points.rows(); ++i) {
-        points.row(i) = closest[static_cast<std::size_t>(i)].point.transpose();
-    }
-    return points;
+    return positions_of(closest_points(deformed, target));
 }
 
 Counterparts intrinsic_counterparts(const LaplacianEigenbasis& template_basis,
@@ -96,10 +100,7 @@ Counterparts intrinsic_counterparts(const LaplacianEigenbasis& template_basis,
     // Positions in units of the target's √area, as the functions are in units of area.
     const double unit = std::sqrt(target_basis.masses.sum());
     const std::vector<SurfacePoint> closest = closest_points(deformed, target);
-    Eigen::MatrixX3d places(deformed.rows(), 3);
-    for (Eigen::Index i = 0; i < places.rows(); ++i) {
-        places.row(i) = closest[static_cast<std::size_t>(i)].point.transpose() / unit;
-    }
+    const Eigen::MatrixX3d places = positions_of(closest) / unit;
     const Eigen::MatrixX3d vertices = target.V / unit;
 
     const std::vector<Eigen::Index> start = nearest_corners(target, closest);

@@ -27,7 +27,7 @@ namespace genflow::detail {
 /// deformed template implies, in the finest template's and target's eigenbases.
 class ReadingJudge {
 public:
-    /// Keeps all three by reference.
+    /// Keeps both by reference.
     ReadingJudge(const FinestBases& bases, const TriangleMesh& target);
 
     /// The commutativity of the map that puts each template vertex on the target's closest
