@@ -32,7 +32,8 @@ void check_inputs(const LaplacianEigenbasis& template_basis,
                            " and " + std::to_string(target_basis.functions.cols()) +
                            " functions) do not fit the template and the target");
     }
-    if (!(options.reach > 0) || !std::isfinite(options.reach)) {
+    // isfinite first: an ordered comparison with NaN raises the invalid-operation flag.
+    if (!std::isfinite(options.reach) || options.reach <= 0) {
         throw InvalidInput("intrinsic_counterparts: reach must be positive and finite, got " +
                            std::to_string(options.reach));
     }
