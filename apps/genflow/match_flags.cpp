@@ -172,8 +172,16 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
                     "and not if the map was mirrored (0: none)")
         ->check(CLI::Range(0, 100))
         ->capture_default_str();
-    command.add_flag("--implicit", flags.match.implicit,
-                     "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
+    CLI::Option* implicit =
+        command.add_flag("--implicit", flags.match.implicit,
+                         "Implicit flow steps (G + τA)⁻¹ dE/dX (paper eq. 11) instead of explicit");
+    command
+        .add_option("--quasi-newton", flags.match.quasi_newton_memory,
+                    "Quasi-Newton flow steps: L-BFGS in the prior's metric with this many past "
+                    "steps (0: steepest descent)")
+        ->check(CLI::Range(0, 100))
+        ->excludes(implicit)
+        ->capture_default_str();
     command.add_flag("--no-align", flags.no_align,
                      "Skip the global rigid alignment (the inputs are already aligned)");
 }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "flows/flow_loop.h"
+#include "flows/quasi_newton_memory.h"
 #include "genflow/exceptions.h"
 #include "operators/triangle.h"
 
@@ -25,6 +26,11 @@ void check_options(const DescentOptions& options) {
         throw InvalidInput("gradient_descent: max_displacement must be positive and finite, got " +
                            std::to_string(options.max_displacement));
     }
+    if (options.quasi_newton_memory < 0 || (options.quasi_newton_memory > 0 && options.implicit)) {
+        throw InvalidInput(
+            "gradient_descent: quasi_newton_memory must be >= 0, and 0 with implicit steps, got " +
+            std::to_string(options.quasi_newton_memory));
+    }
     if (options.max_steps < 0 || !detail::finite_at_least(options.stagnation_tolerance, 0) ||
         options.stagnation_window < 0 || std::isnan(options.max_seconds) ||
         options.max_seconds <= 0 || std::isnan(options.target_energy)) {
@@ -35,14 +41,22 @@ void check_options(const DescentOptions& options) {
 }
 
 // The line-search policy: steepest descent in the metric, τ from the last accepted step
-// (DescentOptions::double_after_backtracking), halved until the Armijo condition holds.
+// (DescentOptions::double_after_backtracking), halved until the Armijo condition holds; with a
+// quasi-Newton memory, its direction first, from τ = 1 (DescentOptions::quasi_newton_memory).
 class LineSearch {
 public:
     LineSearch(const Energy& energy, Metric& metric, const DescentOptions& options)
-        : energy_(energy), metric_(metric), options_(options) {}
+        : energy_(energy), metric_(metric), options_(options) {
+        if (options.quasi_newton_memory > 0) {
+            memory_.emplace(options.quasi_newton_memory);
+        }
+    }
 
     detail::ProposedStep operator()(const TriangleMesh& current, double value) {
         const VertexField differential = energy_.differential(current);
+        if (memory_) {
+            memory_->record(current.V, differential, metric_);
+        }
         const VertexField g = metric_.gradient(differential);           // the explicit gradient
         const double slope = (differential.array() * g.array()).sum();  // ‖g‖²_G
         std::optional<Linearization> linearization;
@@ -59,6 +73,13 @@ public:
         }
         if (!(slope > 0) || !(largest > 0)) {
             return {};  // a stationary point: Converged
+        }
+        if (memory_ && !memory_->empty()) {
+            if (std::optional<detail::ProposedStep> step =
+                    quasi_newton_step(current, value, differential)) {
+                return std::move(*step);
+            }
+            memory_->clear();  // its direction did not descend: the metric's gradient instead
         }
         // Explicit: the direction is g for every τ, capped so no vertex moves farther than
         // max_displacement. Implicit: the direction (G + τA)⁻¹ dE/dX depends on τ and shrinks
@@ -87,9 +108,7 @@ public:
             }
             trial.V = current.V - tau * direction;
             const double trial_value = energy_.value(trial);
-            // Strictly lower, too: a step too small to change E in floating point is no step.
-            if (std::isfinite(trial_value) && trial_value <= value - kArmijo * tau * decrease &&
-                trial_value < value) {
+            if (accepts(trial_value, value, tau * decrease)) {
                 step_size_ = tau;
                 backtracked_ = halving > 0;
                 return {.next = std::move(trial), .value = trial_value};
@@ -99,11 +118,43 @@ public:
     }
 
 private:
+    // Armijo's condition for a step whose first-order decrease is `decrease`; strictly lower,
+    // too: a step too small to change E in floating point is no step.
+    static bool accepts(double trial_value, double value, double decrease) {
+        return std::isfinite(trial_value) && trial_value <= value - kArmijo * decrease &&
+               trial_value < value;
+    }
+
+    // The step along the memory's direction d: τ = 1 is the quasi-Newton step, capped so that
+    // no vertex moves farther than max_displacement, and halved until Armijo's condition holds.
+    // None if d does not descend or no τ is accepted.
+    std::optional<detail::ProposedStep> quasi_newton_step(const TriangleMesh& current, double value,
+                                                          const VertexField& differential) {
+        const VertexField direction = memory_->direction(differential, metric_);
+        const double decrease = (differential.array() * direction.array()).sum();
+        const double largest = direction.rowwise().norm().maxCoeff();
+        if (!std::isfinite(decrease) || !(decrease > 0) || !std::isfinite(largest) ||
+            !(largest > 0)) {
+            return std::nullopt;
+        }
+        double tau = std::min(1.0, options_.max_displacement / largest);
+        TriangleMesh trial = current;
+        for (int halving = 0; halving <= kMaxHalvings; ++halving, tau /= 2) {
+            trial.V = current.V - tau * direction;
+            const double trial_value = energy_.value(trial);
+            if (accepts(trial_value, value, tau * decrease)) {
+                return detail::ProposedStep{.next = std::move(trial), .value = trial_value};
+            }
+        }
+        return std::nullopt;
+    }
+
     const Energy& energy_;
     Metric& metric_;
     const DescentOptions& options_;
-    double step_size_ = 0;      // τ of the last accepted step; 0 before the first
+    double step_size_ = 0;      // τ of the last accepted steepest step; 0 before the first
     bool backtracked_ = false;  // whether that step's first τ was refused
+    std::optional<detail::QuasiNewtonMemory> memory_;  // with quasi_newton_memory > 0
 };
 
 }  // namespace

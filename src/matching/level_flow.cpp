@@ -110,7 +110,8 @@ FlowResult LevelFlows::run_flow(int l, const TriangleMesh& moved, int iterations
                            .max_steps = iterations,
                            .stagnation_tolerance = options_.stagnation_tolerance,
                            .stagnation_window = 20,
-                           .implicit = options_.implicit};
+                           .implicit = options_.implicit,
+                           .quasi_newton_memory = options_.quasi_newton_memory};
     if (options_.progress && reports) {
         descent.progress = [this, l](const FlowProgress& p) {
             const bool go_on =

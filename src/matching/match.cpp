@@ -107,7 +107,8 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         options.second_opinion.alternative_starts_above < 0 ||
         !detail::finite_above(options.articulated_finest_global, 0) ||
         options.articulated_finest_global > 1 ||
-        !detail::finite_above(options.counterparts.reach, 0)) {
+        !detail::finite_above(options.counterparts.reach, 0) || options.quasi_newton_memory < 0 ||
+        (options.quasi_newton_memory > 0 && options.implicit)) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
             "stagnation_tolerance >= 0, h1_length > 0, levels >= 0, coarse_vertices >= 100, "
@@ -119,7 +120,8 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
             "map_fit.max_fits >= 0, second_opinion.above >= 0, "
             "second_opinion.alternative_starts >= 0, second_opinion.alternative_starts_above >= 0 "
             "and "
-            "articulated_finest_global in (0, 1], counterparts.reach > 0");
+            "articulated_finest_global in (0, 1], counterparts.reach > 0, "
+            "quasi_newton_memory >= 0 (0 with implicit steps)");
     }
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {

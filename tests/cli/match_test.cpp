@@ -256,6 +256,14 @@ TEST(MatchCli, RefusesBadInputAndWritesNothing) {
         run_genflow("match " + quoted(directory / "limb.ply") + " " +
                     quoted(directory / "limb.ply") + " -o " + quoted(out) + " --prior banana");
     EXPECT_EQ(unknown_prior.exit_code, 2);
+    // Two step rules at once: one line naming both options.
+    const auto two_steps = run_genflow("match " + quoted(directory / "limb.ply") + " " +
+                                       quoted(directory / "limb.ply") + " -o " + quoted(out) +
+                                       " --implicit --quasi-newton 5");
+    EXPECT_EQ(two_steps.exit_code, 2);
+    EXPECT_NE(two_steps.err.find("--quasi-newton"), std::string::npos) << two_steps.err;
+    EXPECT_NE(two_steps.err.find("--implicit"), std::string::npos) << two_steps.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 }  // namespace

@@ -228,6 +228,50 @@ TEST(GradientDescent, ImplicitStepsDescendWithinTheCapInFewerSteps) {
         InvalidInput);
 }
 
+// Quasi-Newton steps (L-BFGS in the metric): still a descent at every step, within the cap,
+// and the curvature the steepest flow lacks brings it as low in far fewer steps.
+TEST(GradientDescent, QuasiNewtonStepsDescendWithinTheCapInFewerSteps) {
+    const auto [target, moving] = limb_off_its_target();
+    const PseudoHausdorffEnergy energy(target, {.alpha = 8, .epsilon = mean_edge_length(target)});
+    const double cap = 0.02 * bounding_box_diagonal(target);
+    H1Metric metric({.lambda = std::pow(5 * mean_edge_length(moving), 2)});
+    const FlowResult steepest =
+        gradient_descent(moving, energy, metric, {.max_displacement = cap, .max_steps = 150});
+    Eigen::MatrixX3d previous = moving.V;
+    double longest_move = 0;
+    const FlowResult quasi_newton =
+        gradient_descent(moving, energy, metric,
+                         {.max_displacement = cap,
+                          .max_steps = 150,
+                          .quasi_newton_memory = 5,
+                          .progress = [&](const FlowProgress& p) {
+                              longest_move = std::max(
+                                  longest_move, (p.mesh->V - previous).rowwise().norm().maxCoeff());
+                              previous = p.mesh->V;
+                              return true;
+                          }});
+    // The first step at which the quasi-Newton flow is as low as the steepest one ends.
+    const auto as_low =
+        static_cast<int>(std::find_if(quasi_newton.energy.begin(), quasi_newton.energy.end(),
+                                      [&](double e) { return e <= steepest.energy.back(); }) -
+                         quasi_newton.energy.begin());
+    std::printf(
+        "steepest: %d steps, d_H %.5f; quasi-Newton: as low after %d steps, %.5f after %d\n",
+        steepest.steps, steepest.energy.back(), as_low, quasi_newton.energy.back(),
+        quasi_newton.steps);
+    EXPECT_LE(longest_move, cap * (1 + 1e-12));
+    ASSERT_TRUE(quasi_newton.ok());
+    expect_strictly_decreasing(quasi_newton.energy);
+    EXPECT_LT(as_low, steepest.steps / 2);
+    EXPECT_THROW((void)gradient_descent(moving, energy, metric,
+                                        {.max_displacement = cap, .quasi_newton_memory = -1}),
+                 InvalidInput);
+    EXPECT_THROW((void)gradient_descent(
+                     moving, energy, metric,
+                     {.max_displacement = cap, .implicit = true, .quasi_newton_memory = 5}),
+                 InvalidInput);
+}
+
 TEST(RigidAlignment, RecoversARotationTranslationAndScaleOfAnotherSampling) {
     const TriangleMesh moving = make_limb(3);
     TriangleMesh fixed = make_limb(4, 11);
@@ -1082,6 +1126,13 @@ TEST(Match, RejectsBadInput) {
     MatchOptions sharper;
     sharper.coarse_epsilon = 0.5;
     EXPECT_THROW((void)match(mesh, mesh, sharper), InvalidInput);
+    MatchOptions two_step_rules;
+    two_step_rules.implicit = true;
+    two_step_rules.quasi_newton_memory = 5;
+    EXPECT_THROW((void)match(mesh, mesh, two_step_rules), InvalidInput);
+    two_step_rules.implicit = false;
+    two_step_rules.quasi_newton_memory = -1;
+    EXPECT_THROW((void)match(mesh, mesh, two_step_rules), InvalidInput);
     for (const double tolerance : {-0.01, static_cast<double>(NAN)}) {
         MatchOptions shortlist;
         shortlist.starts.selection_tolerance = tolerance;

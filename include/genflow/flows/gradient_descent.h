@@ -36,6 +36,12 @@ struct DescentOptions {
     /// τ itself. Twice over it overshoots again: a quarter more trials (d_H evaluations) per step
     /// for the same results (docs/eval/results.md, "Holding the step after backtracking").
     bool double_after_backtracking = false;
+    /// Quasi-Newton steps: L-BFGS with this many past steps, the metric's G⁻¹ its initial
+    /// inverse Hessian (docs/formulas.md §9). The step is X ← X − τ H dE/dX from τ = 1, within
+    /// the same displacement cap and Armijo backtracking; a direction that does not descend
+    /// clears the memory and the steepest step is taken. 0: steepest descent alone. Not with
+    /// `implicit`.
+    int quasi_newton_memory = 0;
     /// Called after every accepted step; return false to stop (status Cancelled). Optional.
     std::function<bool(const FlowProgress&)> progress = {};
 };
@@ -52,7 +58,8 @@ struct DescentOptions {
 /// target energy; otherwise as FlowStatus says.
 ///
 /// \throws InvalidInput if the options are invalid (max_displacement not positive and finite,
-///         max_steps < 0, a negative tolerance or window, max_seconds ≤ 0), the metric
+///         max_steps < 0, a negative tolerance or window, max_seconds ≤ 0, a negative
+///         quasi_newton_memory or one with `implicit`), the metric
 ///         refuses the mesh, or `implicit` is set for an energy without a linearization.
 /// \throws SolverError  if the metric cannot be factored at the input positions.
 [[nodiscard]] FlowResult gradient_descent(const TriangleMesh& mesh, const Energy& energy,

@@ -199,6 +199,9 @@ struct MatchOptions {
     double max_step = 0.02;
     /// Implicit steps (paper eq. 11) instead of explicit ones: faster, not better.
     bool implicit = false;
+    /// Quasi-Newton steps (DescentOptions::quasi_newton_memory): L-BFGS in the prior's metric
+    /// with this many past steps; 0, the steepest descent of eq. 14. Not with `implicit`.
+    int quasi_newton_memory = 0;
     /// A flow has converged when d_H fell by less than this fraction over its last 20 steps.
     double stagnation_tolerance = 1e-3;
     /// Steps of each further flow on the second coarsest level (its guided refinement, the
