@@ -41,6 +41,7 @@ configurations=(
   "no-refinement|--refinement-guidances 0|the second coarsest level's eigenfunction-guided flows|refinement_guidance=0.0"
   "no-turn-back|--no-turn-back|turning back parts a fine map places turned over|turned_parts=0"
   "no-map-fits|--map-fits 0|the fits to the fine functional map|map_fits=0"
+  "no-counterparts|--no-counterparts|the counterparts chosen by the eigenfunctions: each vertex's closest point on the target|"
   "no-reruns|--stiffness-candidates 1 --second-opinion-above inf --alternative-starts 0 --no-signature-fallback|every stage that runs the guided rounds again: stiffer rounds, the fallback, the second opinion and alternative starts (and so the limb exchanges)"
   "paper|--preset paper|everything: eq. 14 over the levels from the inputs' frames"
 )

@@ -150,10 +150,10 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
                      "Do not make the match again with the eigenfunctions off (guided by the "
                      "heat kernel signatures alone), whose result is kept if its map commutes "
                      "better with the surfaces' Laplacians");
-    command.add_flag("--counterparts", flags.match.counterparts.enabled,
-                     "Give each template vertex as its counterpart (--correspondence) the point "
-                     "near where the match put it that the eigenfunctions agree with, not the "
-                     "target's closest point");
+    command.add_flag("--no-counterparts", flags.no_counterparts,
+                     "Give each template vertex as its counterpart (--correspondence) the "
+                     "target's closest point to where the match put it, not the point near it "
+                     "that the eigenfunctions agree with");
     command
         .add_option("--counterpart-reach", flags.match.counterparts.reach,
                     "How far, over the target's square root of area, a counterpart may be from "
@@ -193,6 +193,7 @@ MatchOptions resolved(const MatchFlags& flags, bool has_parts) {
     options.prior = *parse_match_prior(prior);
     options.starts.enabled = options.starts.enabled && !flags.no_align;
     options.turn_back.enabled = options.turn_back.enabled && !flags.no_turn_back;
+    options.counterparts.enabled = options.counterparts.enabled && !flags.no_counterparts;
     options.limb_swaps.enabled = options.limb_swaps.enabled && !flags.no_limb_swaps;
     options.guided.signature_fallback =
         options.guided.signature_fallback && !flags.no_signature_fallback;

@@ -20,6 +20,7 @@ struct MatchFlags {
     bool no_limb_swaps = false;
     bool no_signature_fallback = false;
     bool no_signatures_reading = false;
+    bool no_counterparts = false;
 };
 
 /// Declares `--prior` on `command`, writing into `flags` (which must outlive the parse).

@@ -55,7 +55,7 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_TRUE(json["second_opinion_disagreement"].is_null());  // the rigid prior asks none
     EXPECT_EQ(json["swapped_limbs"], 0);                         // nor checks for swapped limbs
     EXPECT_EQ(json["signature_fallback"], false);                // nor has a guided round
-    EXPECT_TRUE(json["counterparts_moved"].is_null());           // the closest points, by default
+    EXPECT_GE(json["counterparts_moved"].get<long>(), 0);        // the counterparts, by default
     EXPECT_LT(json["correspondence_error_over_diagonal"]["mean"].get<double>(), 0.02);
     EXPECT_EQ(json["stranded_vertices"], 0);
     EXPECT_TRUE(json["stranded_vertex_indices"].empty());
@@ -72,8 +72,8 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(directory / "summary.json")), json);
 }
 
-// --counterparts gives the vertices their counterparts (and says how many moved from the
-// closest point); --counterpart-reach must be positive.
+// The counterparts' stage runs by default (and says how many vertices it moved from the closest
+// point), --no-counterparts turns it off, and --counterpart-reach must be positive.
 TEST(MatchCli, CounterpartsHaveTheirSwitchAndReach) {
     const test::TemporaryDirectory directory;
     write_mesh(directory / "template.ply", make_limb(3));
@@ -81,10 +81,13 @@ TEST(MatchCli, CounterpartsHaveTheirSwitchAndReach) {
     const std::string command =
         "match " + quoted(directory / "template.ply") + " " + quoted(directory / "target.ply") +
         " -o " + quoted(directory / "out.ply") + " --prior rigid --iterations 30 --json";
-    const auto on = run_genflow(command + " --counterparts --counterpart-reach 0.1");
+    const auto on = run_genflow(command + " --counterpart-reach 0.1");
     ASSERT_EQ(on.exit_code, 0) << on.err;
     EXPECT_GE(nlohmann::json::parse(on.out)["counterparts_moved"].get<long>(), 0);
-    const auto refused = run_genflow(command + " --counterparts --counterpart-reach 0");
+    const auto off = run_genflow(command + " --no-counterparts");
+    ASSERT_EQ(off.exit_code, 0) << off.err;
+    EXPECT_TRUE(nlohmann::json::parse(off.out)["counterparts_moved"].is_null());
+    const auto refused = run_genflow(command + " --counterpart-reach 0");
     EXPECT_NE(refused.exit_code, 0);
     EXPECT_NE(refused.err.find("--counterpart-reach"), std::string::npos) << refused.err;
 }

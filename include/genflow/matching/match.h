@@ -165,10 +165,10 @@ struct SignaturesReadingOptions {
 /// Each template vertex's counterpart on the target (src/matching/counterparts.h,
 /// MatchResult::counterparts): among the target's points near where the match put the vertex,
 /// the one the Laplacian eigenfunctions agree with, instead of the closest point, which lands on
-/// the wrong one of two parts that touch. The deformed template does not change. Off until
-/// measured on the whole development sample (docs/matching.md, "Counterparts").
+/// the wrong one of two parts that touch. The deformed template does not change (docs/matching.md,
+/// "Counterparts").
 struct CounterpartOptions {
-    bool enabled = false;
+    bool enabled = true;
     /// How far, over the target's √area, a counterpart may be from where the match put the
     /// vertex: a move this long costs as much as the eigenfunctions' mismatch between two
     /// unrelated points. A few fingers' widths on a body, more than a match is off where right.
