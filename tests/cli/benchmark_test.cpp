@@ -71,13 +71,15 @@ TEST(BenchmarkCli, ShardsMatchTheSampleAndAResumedRunSummarizesIt) {
     EXPECT_EQ(summary["across_subjects"]["pairs"], 2);
     EXPECT_EQ(summary["all"]["mirrored"], 0);
     EXPECT_LT(summary["all"]["mean"].get<double>(), 0.02);
+    EXPECT_GT(summary["all"]["processor_seconds_mean"].get<double>(), 0);
     ASSERT_EQ(summary["rows"].size(), 4u);
     for (const auto& row : summary["rows"]) {
         const auto same = std::find_if(shard_rows.begin(), shard_rows.end(), [&](const auto& r) {
             return r["from"] == row["from"] && r["to"] == row["to"];
         });
         ASSERT_NE(same, shard_rows.end()) << row.dump();
-        EXPECT_EQ((*same)["seconds"], row["seconds"]);  // read back, not matched again
+        EXPECT_EQ((*same)["seconds"], row["seconds"]);         // read back, not matched again
+        EXPECT_GT(row["processor_seconds"].get<double>(), 0);  // matching takes processor time
         EXPECT_FALSE(row["mirrored"].get<bool>());
         EXPECT_LT(row["mean"].get<double>(), row["mean_against_mirror"].get<double>());
         EXPECT_TRUE(std::filesystem::exists(
