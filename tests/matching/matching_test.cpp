@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -138,6 +139,17 @@ LimbPair limb_off_its_target() {
     return pair;
 }
 
+// A flow's progress callback that keeps in `longest` the longest move of a vertex in one step,
+// the flow starting from `start`.
+std::function<bool(const FlowProgress&)> longest_move_tracker(Eigen::MatrixX3d start,
+                                                              double& longest) {
+    return [previous = std::move(start), &longest](const FlowProgress& p) mutable {
+        longest = std::max(longest, (p.mesh->V - previous).rowwise().norm().maxCoeff());
+        previous = p.mesh->V;
+        return true;
+    };
+}
+
 // d_H counting its evaluations (value(), which differential() then reuses: one per trial τ).
 class CountedDistance final : public Energy {
 public:
@@ -197,19 +209,13 @@ TEST(GradientDescent, ImplicitStepsDescendWithinTheCapInFewerSteps) {
     H1Metric metric({.lambda = std::pow(5 * mean_edge_length(moving), 2)});
     const FlowResult explicit_flow =
         gradient_descent(moving, energy, metric, {.max_displacement = cap, .max_steps = 150});
-    Eigen::MatrixX3d previous = moving.V;
     double longest_move = 0;
     const FlowResult implicit_flow =
         gradient_descent(moving, energy, metric,
                          {.max_displacement = cap,
                           .max_steps = 150,
                           .implicit = true,
-                          .progress = [&](const FlowProgress& p) {
-                              longest_move = std::max(
-                                  longest_move, (p.mesh->V - previous).rowwise().norm().maxCoeff());
-                              previous = p.mesh->V;
-                              return true;
-                          }});
+                          .progress = longest_move_tracker(moving.V, longest_move)});
     EXPECT_LE(longest_move, cap * (1 + 1e-12));
     ASSERT_TRUE(implicit_flow.ok());
     ASSERT_GE(implicit_flow.steps, 3);
@@ -237,19 +243,13 @@ TEST(GradientDescent, QuasiNewtonStepsDescendWithinTheCapInFewerSteps) {
     H1Metric metric({.lambda = std::pow(5 * mean_edge_length(moving), 2)});
     const FlowResult steepest =
         gradient_descent(moving, energy, metric, {.max_displacement = cap, .max_steps = 150});
-    Eigen::MatrixX3d previous = moving.V;
     double longest_move = 0;
     const FlowResult quasi_newton =
         gradient_descent(moving, energy, metric,
                          {.max_displacement = cap,
                           .max_steps = 150,
                           .quasi_newton_memory = 5,
-                          .progress = [&](const FlowProgress& p) {
-                              longest_move = std::max(
-                                  longest_move, (p.mesh->V - previous).rowwise().norm().maxCoeff());
-                              previous = p.mesh->V;
-                              return true;
-                          }});
+                          .progress = longest_move_tracker(moving.V, longest_move)});
     // The first step at which the quasi-Newton flow is as low as the steepest one ends.
     const auto as_low =
         static_cast<int>(std::find_if(quasi_newton.energy.begin(), quasi_newton.energy.end(),
