@@ -59,14 +59,6 @@ public:
         }
         const VertexField g = metric_.gradient(differential);           // the explicit gradient
         const double slope = (differential.array() * g.array()).sum();  // ‖g‖²_G
-        std::optional<Linearization> linearization;
-        if (options_.implicit) {
-            linearization = energy_.linearize(current);
-            if (!linearization) {
-                throw InvalidInput(
-                    "gradient_descent: implicit steps need an energy with linearize()");
-            }
-        }
         const double largest = g.rowwise().norm().maxCoeff();
         if (!std::isfinite(slope) || !std::isfinite(largest)) {
             return {.stop = FlowStatus::NonFinite, .message = "non-finite gradient"};
@@ -81,48 +73,98 @@ public:
             }
             memory_->clear();  // its direction did not descend: the metric's gradient instead
         }
-        // Explicit: the direction is g for every τ, capped so no vertex moves farther than
-        // max_displacement. Implicit: the direction (G + τA)⁻¹ dE/dX depends on τ and shrinks
-        // as τ grows, so τ may grow past the explicit cap; the displacement is checked per τ.
+        // τ at which the steepest step moves a vertex by max_displacement.
         const double cap = options_.max_displacement / largest;
-        const double longest_tau = options_.implicit ? kImplicitGrowth * cap : cap;
-        // Twice the last τ after a step taken at once; after one that had to backtrack, the τ
-        // it took, which twice over overshot (DescentOptions::double_after_backtracking).
-        const double growth = backtracked_ && !options_.double_after_backtracking ? 1 : 2;
-        double tau = step_size_ > 0 ? std::min(growth * step_size_, longest_tau) : cap;
-        TriangleMesh trial = current;
-        for (int halving = 0; halving <= kMaxHalvings; ++halving, tau /= 2) {
-            VertexField direction = g;
-            double decrease = slope;
-            if (options_.implicit) {
-                try {
-                    direction = metric_.shifted_gradient(linearization->A, tau, differential);
-                } catch (const SolverError&) {
-                    continue;  // a smaller τ is closer to the explicit step
-                }
-                decrease = (differential.array() * direction.array()).sum();
-                if (!(tau * direction.rowwise().norm().maxCoeff() <= options_.max_displacement) ||
-                    !(decrease > 0)) {
-                    continue;
-                }
-            }
-            trial.V = current.V - tau * direction;
-            const double trial_value = energy_.value(trial);
-            if (accepts(trial_value, value, tau * decrease)) {
-                step_size_ = tau;
-                backtracked_ = halving > 0;
-                return {.next = std::move(trial), .value = trial_value};
-            }
-        }
-        return {};  // no descent left at this resolution: Converged
+        return options_.implicit ? implicit_step(current, value, differential, cap)
+                                 : explicit_step(current, value, g, slope, cap);
     }
 
 private:
+    struct AcceptedStep {
+        detail::ProposedStep step;
+        double tau = 0;
+        int halvings = 0;
+    };
+
     // Armijo's condition for a step whose first-order decrease is `decrease`; strictly lower,
     // too: a step too small to change E in floating point is no step.
     static bool accepts(double trial_value, double value, double decrease) {
         return std::isfinite(trial_value) && trial_value <= value - kArmijo * decrease &&
                trial_value < value;
+    }
+
+    // The step current − τ·direction for the first of τ, τ/2, … that Armijo's condition
+    // accepts, `decrease` being the first-order decrease per unit τ; none if no τ is accepted.
+    [[nodiscard]] std::optional<AcceptedStep> backtrack(const TriangleMesh& current, double value,
+                                                        const VertexField& direction,
+                                                        double decrease, double tau) const {
+        TriangleMesh trial = current;
+        for (int halving = 0; halving <= kMaxHalvings; ++halving, tau /= 2) {
+            trial.V = current.V - tau * direction;
+            const double trial_value = energy_.value(trial);
+            if (accepts(trial_value, value, tau * decrease)) {
+                return AcceptedStep{{.next = std::move(trial), .value = trial_value}, tau, halving};
+            }
+        }
+        return std::nullopt;
+    }
+
+    // The first τ of a steepest step: twice the last τ after a step taken at once; after one
+    // that had to backtrack, the τ it took, which twice over overshot
+    // (DescentOptions::double_after_backtracking). `cap` before the first step.
+    [[nodiscard]] double first_tau(double longest_tau, double cap) const {
+        const double growth = backtracked_ && !options_.double_after_backtracking ? 1 : 2;
+        return step_size_ > 0 ? std::min(growth * step_size_, longest_tau) : cap;
+    }
+
+    void remember(double tau, int halvings) {
+        step_size_ = tau;
+        backtracked_ = halvings > 0;
+    }
+
+    // Explicit: the direction is g for every τ, capped so that no vertex moves farther than
+    // max_displacement.
+    detail::ProposedStep explicit_step(const TriangleMesh& current, double value,
+                                       const VertexField& g, double slope, double cap) {
+        std::optional<AcceptedStep> accepted =
+            backtrack(current, value, g, slope, first_tau(cap, cap));
+        if (!accepted) {
+            return {};  // no descent left at this resolution: Converged
+        }
+        remember(accepted->tau, accepted->halvings);
+        return std::move(accepted->step);
+    }
+
+    // Implicit (eq. 11): the direction (G + τA)⁻¹ dE/dX depends on τ and shrinks as τ grows, so
+    // τ may grow past the explicit cap; the displacement is checked per τ.
+    detail::ProposedStep implicit_step(const TriangleMesh& current, double value,
+                                       const VertexField& differential, double cap) {
+        const std::optional<Linearization> linearization = energy_.linearize(current);
+        if (!linearization) {
+            throw InvalidInput("gradient_descent: implicit steps need an energy with linearize()");
+        }
+        double tau = first_tau(kImplicitGrowth * cap, cap);
+        TriangleMesh trial = current;
+        for (int halving = 0; halving <= kMaxHalvings; ++halving, tau /= 2) {
+            VertexField direction;
+            try {
+                direction = metric_.shifted_gradient(linearization->A, tau, differential);
+            } catch (const SolverError&) {
+                continue;  // a smaller τ is closer to the explicit step
+            }
+            const double decrease = (differential.array() * direction.array()).sum();
+            if (!(tau * direction.rowwise().norm().maxCoeff() <= options_.max_displacement) ||
+                !(decrease > 0)) {
+                continue;
+            }
+            trial.V = current.V - tau * direction;
+            const double trial_value = energy_.value(trial);
+            if (accepts(trial_value, value, tau * decrease)) {
+                remember(tau, halving);
+                return {.next = std::move(trial), .value = trial_value};
+            }
+        }
+        return {};  // no descent left at this resolution: Converged
     }
 
     // The step along the memory's direction d: τ = 1 is the quasi-Newton step, capped so that
@@ -137,16 +179,13 @@ private:
             !(largest > 0)) {
             return std::nullopt;
         }
-        double tau = std::min(1.0, options_.max_displacement / largest);
-        TriangleMesh trial = current;
-        for (int halving = 0; halving <= kMaxHalvings; ++halving, tau /= 2) {
-            trial.V = current.V - tau * direction;
-            const double trial_value = energy_.value(trial);
-            if (accepts(trial_value, value, tau * decrease)) {
-                return detail::ProposedStep{.next = std::move(trial), .value = trial_value};
-            }
+        std::optional<AcceptedStep> accepted =
+            backtrack(current, value, direction, decrease,
+                      std::min(1.0, options_.max_displacement / largest));
+        if (!accepted) {
+            return std::nullopt;
         }
-        return std::nullopt;
+        return std::move(accepted->step);
     }
 
     const Energy& energy_;
