@@ -108,7 +108,7 @@ TEST(EdgeLengthEnergy, DifferentialAndLinearizationAgreeWithTheValue) {
     EXPECT_EQ((Eigen::MatrixXd(A) - Eigen::MatrixXd(A).transpose()).cwiseAbs().maxCoeff(), 0);
     // A is a graph Laplacian: rows sum to zero, and it is PSD.
     EXPECT_LT((A * Eigen::VectorXd::Ones(A.cols())).cwiseAbs().maxCoeff(), 1e-12);
-    const Eigen::VectorXd v = Eigen::VectorXd::Random(A.cols());
+    const Eigen::VectorXd v = test::random_matrix(A.cols(), 1, 1);
     EXPECT_GT(v.dot(A * v), 0);
 }
 

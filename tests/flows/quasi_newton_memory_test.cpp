@@ -54,7 +54,7 @@ TEST(QuasiNewtonMemory, SatisfiesTheSecantEquationAndDescends) {
     const MetricOnASphere sphere;
     std::mt19937 random(2);
     const Eigen::Index n = sphere.mesh.V.rows();
-    const Eigen::ArrayXd hessian = Eigen::ArrayXd::Random(3 * n).abs() + 0.1;
+    const Eigen::ArrayXd hessian = random_field(n, random).reshaped().array().abs() + 0.1;
     const auto differential = [&](const VertexField& x) {
         VertexField d(n, 3);
         d.reshaped() = (hessian * x.reshaped().array()).matrix();

@@ -12,6 +12,7 @@
 #include "genflow/mesh/primitives.h"
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mass_matrix.h"
+#include "support/test_meshes.h"
 
 namespace genflow {
 namespace {
@@ -38,7 +39,7 @@ Eigen::SparseMatrix<double> sphere_h1_matrix(int level, int copies) {
 void expect_solves(const Eigen::SparseMatrix<double>& A) {
     detail::SpdSolver solver;
     solver.compute(A, "test");
-    const Eigen::MatrixXd X_true = Eigen::MatrixXd::Random(A.rows(), 3);
+    const Eigen::MatrixXd X_true = test::random_matrix(A.rows(), 3, 1);
     const Eigen::MatrixXd B = A * X_true;
     Eigen::MatrixXd X = solver.solve(B);
     EXPECT_LT((X - X_true).norm(), 1e-8 * X_true.norm()) << A.rows();

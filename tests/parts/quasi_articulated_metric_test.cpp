@@ -129,6 +129,25 @@ TEST(QuasiArticulatedMetric, DeepChainKeepsOrthonormalBlocks) {
     EXPECT_LT(test::relative_error(metric.apply(metric.gradient(U)), U), 1e-10);
 }
 
+// Noise at every vertex with its part-motion components taken out: QᵀD = 0 for the fields Q
+// of `metric`'s blocks (QᵀMQ = I, M the lumped masses), so that no part motion explains it.
+VertexField noise_no_part_motion_explains(const SubspaceMetric& metric, unsigned seed) {
+    const Eigen::Index n = metric.masses().size();
+    Eigen::VectorXd d = test::random_matrix(3 * n, 1, seed);  // vertex i at rows 3i..3i+2
+    for (const FieldBlock& block : metric.orthonormal_blocks()) {
+        Eigen::MatrixXd MQ = block.fields;
+        for (Eigen::Index i = 0; i < n; ++i) {
+            MQ.middleRows(3 * i, 3) *= metric.masses()[i];
+        }
+        d -= MQ * (block.fields.transpose() * d);
+    }
+    VertexField D(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        D.row(i) = d.segment<3>(3 * i).transpose();
+    }
+    return D;
+}
+
 // With smoothing_length the residual is measured in H1: the part of a rough differential that
 // no part motion explains moves smoothly, and the bend stays cheap.
 TEST(QuasiArticulatedMetric, SmoothsTheResidualOverAnH1Base) {
@@ -142,14 +161,16 @@ TEST(QuasiArticulatedMetric, SmoothsTheResidualOverAnH1Base) {
     EXPECT_LT(test::relative_error(smooth.gradient(smooth.apply(U)), U), 1e-9);
     EXPECT_GT((U.array() * smooth.apply(U).array()).sum(), 0);
 
-    // A rough differential (noise at every vertex): its gradient's Dirichlet energy per unit
-    // M-norm, with and without the smoothing.
-    const VertexField rough = VertexField::Random(arm.V.rows(), 3);
+    // A rough differential (noise at every vertex that no part motion explains, whose gradient
+    // is the residual's alone): its gradient's Dirichlet energy per unit M-norm, with and
+    // without the smoothing. Over 30 draws the ratio is 0.023–0.049. (Plain noise lets the part
+    // motions' own share in, which no smoothing changes: 0.008–0.12.)
     const Eigen::SparseMatrix<double> K = cotan_stiffness(arm);
     const auto roughness = [&](const VertexField& v) {
         const VertexField Mv = (v.array().colwise() * plain.masses().array()).matrix();
         return (v.array() * (K * v).array()).sum() / (v.array() * Mv.array()).sum();
     };
+    const VertexField rough = noise_no_part_motion_explains(plain, 1);
     const double plain_roughness = roughness(plain.gradient(rough));
     const double smooth_roughness = roughness(smooth.gradient(rough));
     EXPECT_LT(smooth_roughness, 0.1 * plain_roughness)

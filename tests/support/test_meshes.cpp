@@ -99,6 +99,18 @@ PartModel two_part_arm(const TriangleMesh& mesh) {
     return model;
 }
 
+Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, unsigned seed) {
+    std::mt19937 generator(seed);
+    std::uniform_real_distribution<double> entry(-1, 1);
+    Eigen::MatrixXd matrix(rows, cols);
+    for (Eigen::Index j = 0; j < cols; ++j) {
+        for (Eigen::Index i = 0; i < rows; ++i) {
+            matrix(i, j) = entry(generator);
+        }
+    }
+    return matrix;
+}
+
 TriangleMesh jittered_grid(int cells, unsigned seed) {
     TriangleMesh mesh = make_grid(cells);
     std::mt19937 generator(seed);

@@ -21,6 +21,10 @@ TriangleMesh noisy_icosphere(int level, double relative_sigma = 0.1, unsigned se
 /// Torus with vertex noise, as above.
 TriangleMesh noisy_torus(int rings, int sides, double relative_sigma = 0.1, unsigned seed = 2);
 
+/// A matrix of entries uniform in [-1, 1] drawn from its own seeded generator: the same in
+/// every test order, unlike Eigen's Random(), which draws from the process's std::rand().
+Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, unsigned seed);
+
 /// A figure: a unit sphere with a head, two arms and two legs, spikes of different lengths but
 /// for the pairs, mirror images of one another across the plane x = 0, so that a reflection is
 /// its only symmetry (a map that follows it turns the surface over). Sampled as
