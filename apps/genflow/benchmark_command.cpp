@@ -185,6 +185,7 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
     }
     const MatchResult result = match(from.mesh, to.mesh, options);
     PairMap map{match_correspondence(result, to.mesh), result.seconds, match_choices(result)};
+    map.details["stage_times"] = stage_times_json(result);
     if (result.counterparts_moved) {
         map.closest = closest_points(result.deformed.V, to.mesh);
     }
@@ -263,6 +264,34 @@ std::optional<nlohmann::json> earlier_result(const std::filesystem::path& file) 
     return row;
 }
 
+// Per stage of the matcher (MatchResult::stage_times), its mean wall and processor time over
+// `rows`, a row without the stage counting 0, in the order the stages first ran.
+nlohmann::json stage_times_mean(const std::vector<nlohmann::json>& rows) {
+    std::vector<std::string> stages;
+    std::vector<std::pair<double, double>> sums;  // wall, processor
+    for (const nlohmann::json& row : rows) {
+        const nlohmann::json& details = row.value("details", nlohmann::json::object());
+        for (const nlohmann::json& time : details.value("stage_times", nlohmann::json::array())) {
+            const auto stage = time["stage"].get<std::string>();
+            const auto at = std::find(stages.begin(), stages.end(), stage) - stages.begin();
+            if (at == static_cast<std::ptrdiff_t>(stages.size())) {
+                stages.push_back(stage);
+                sums.emplace_back(0, 0);
+            }
+            sums[static_cast<std::size_t>(at)].first += time["seconds"].get<double>();
+            sums[static_cast<std::size_t>(at)].second += time["processor_seconds"].get<double>();
+        }
+    }
+    nlohmann::json means = nlohmann::json::array();
+    const auto n = static_cast<double>(std::max<std::size_t>(rows.size(), 1));
+    for (std::size_t k = 0; k < stages.size(); ++k) {
+        means.push_back({{"stage", stages[k]},
+                         {"seconds_mean", sums[k].first / n},
+                         {"processor_seconds_mean", sums[k].second / n}});
+    }
+    return means;
+}
+
 // The figures of a set of pairs' rows.
 nlohmann::json summary_of(const std::vector<nlohmann::json>& rows) {
     double sum = 0;
@@ -306,7 +335,8 @@ nlohmann::json summary_of(const std::vector<nlohmann::json>& rows) {
             {"pck", pck},
             {"seconds_mean", rows.empty() ? 0 : seconds / n},
             {"seconds_max", slowest},
-            {"processor_seconds_mean", rows.empty() ? 0 : processor / n}};
+            {"processor_seconds_mean", rows.empty() ? 0 : processor / n},
+            {"stage_times_mean", stage_times_mean(rows)}};
 }
 
 void print_summary_row(const char* set, const nlohmann::json& s) {
@@ -411,6 +441,20 @@ nlohmann::json summary_json(const BenchmarkOptions& options, std::size_t shapes,
             {"rows", rows}};
 }
 
+// Where a pair's processor time went, stage by stage (a method without stages prints nothing).
+void print_stage_times(const nlohmann::json& all) {
+    const double total = all["processor_seconds_mean"].get<double>();
+    if (all["stage_times_mean"].empty() || !(total > 0)) {
+        return;
+    }
+    std::printf("\n| stage | processor time, mean a pair | share |\n|---|---:|---:|\n");
+    for (const nlohmann::json& stage : all["stage_times_mean"]) {
+        const double seconds = stage["processor_seconds_mean"].get<double>();
+        std::printf("| %s | %.2f s | %.1f %% |\n", stage["stage"].get<std::string>().c_str(),
+                    seconds, 100 * seconds / total);
+    }
+}
+
 void print_summary(const nlohmann::json& summary) {
     std::printf(
         "\n| pairs | count | error ×100 | point map ×100 | median pair | worst pair | mirrored | "
@@ -422,6 +466,7 @@ void print_summary(const nlohmann::json& summary) {
     if (summary["failed"].get<int>() > 0) {
         std::printf("\n%d pair(s) failed (not in the figures).\n", summary["failed"].get<int>());
     }
+    print_stage_times(summary["all"]);
     std::printf(
         "\nError: the mean over all reference points of the geodesic distance on the target "
         "(shortest paths along its edges) from where the map put each one to where it belongs, "

@@ -103,4 +103,14 @@ nlohmann::json match_choices(const MatchResult& result) {
             {"counterparts_moved", number_or_null(result.counterparts_moved)}};
 }
 
+nlohmann::json stage_times_json(const MatchResult& result) {
+    nlohmann::json times = nlohmann::json::array();
+    for (const MatchStageTime& time : result.stage_times) {
+        times.push_back({{"stage", time.stage},
+                         {"seconds", time.seconds},
+                         {"processor_seconds", time.processor_seconds}});
+    }
+    return times;
+}
+
 }  // namespace genflow::cli

@@ -58,4 +58,7 @@ void add_second_opinion_option(CLI::App& command, double& threshold);
 /// benchmark report it.
 [[nodiscard]] nlohmann::json match_choices(const MatchResult& result);
 
+/// MatchResult::stage_times as an array of {stage, seconds, processor_seconds}, in their order.
+[[nodiscard]] nlohmann::json stage_times_json(const MatchResult& result);
+
 }  // namespace genflow::cli

@@ -57,6 +57,7 @@ nlohmann::json run_match_job(MatchJob job) {
         {"levels", levels},
         {"alignment_seconds", result.alignment_seconds},
         {"seconds", result.seconds},
+        {"stage_times", stage_times_json(result)},
         {"initial_alignment",
          {{alignment(0, 0), alignment(0, 1), alignment(0, 2), alignment(0, 3)},
           {alignment(1, 0), alignment(1, 1), alignment(1, 2), alignment(1, 3)},

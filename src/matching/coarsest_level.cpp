@@ -283,7 +283,8 @@ FlowResult unguided_flow(const Prepared& prepared, const LevelFlows& flows,
 
 CoarsestMatch match_coarsest_level(const Prepared& prepared, const LevelFlows& flows,
                                    const SpectralDescriptors* spectral, const MatchOptions& options,
-                                   double diagonal, const std::atomic<bool>& cancelled) {
+                                   double diagonal, const std::atomic<bool>& cancelled,
+                                   StageClock& clock) {
     // Of the selection flows within selection_tolerance of the lowest d_H, the one whose
     // signatures agree best goes on (MatchOptions::starts).
     std::vector<FlowResult> selection;
@@ -292,20 +293,27 @@ CoarsestMatch match_coarsest_level(const Prepared& prepared, const LevelFlows& f
         selection = selection_flows(prepared, flows, options);
         chosen = choose_start(selection, *spectral, options.starts.selection_tolerance);
     }
+    clock.end("start selection");
     if (cancelled && !selection.empty()) {
         return {.flow = std::move(selection[chosen]), .start = prepared.starts[chosen]};
     }
     if (!runs_guided_rounds(options)) {
-        return {.flow = unguided_flow(prepared, flows, options, prepared.starts[chosen],
-                                      selection.empty() ? nullptr : &selection[chosen]),
-                .start = prepared.starts[chosen]};
+        CoarsestMatch match{.flow = unguided_flow(prepared, flows, options, prepared.starts[chosen],
+                                                  selection.empty() ? nullptr : &selection[chosen]),
+                            .start = prepared.starts[chosen]};
+        clock.end("coarsest flow");
+        return match;
     }
     const GuidedRounds rounds(prepared.pyramid, flows, *spectral, options, diagonal, cancelled);
     Contest contest(prepared, selection, chosen, rounds, options, diagonal, cancelled);
     contest.run_contenders();
+    clock.end("guided rounds");
     contest.ask_second_opinion();
+    clock.end("second opinion");
     contest.try_alternative_starts();
+    clock.end("alternative starts");
     contest.exchange_limbs();
+    clock.end("limb swaps");
     CoarsestMatch match = contest.finish();
     if (guided_prior(options.prior) != options.prior && !cancelled) {
         // The kept result flows on in the prior's metric, at the stiffness it was kept at; the
@@ -319,6 +327,7 @@ CoarsestMatch match_coarsest_level(const Prepared& prepared, const LevelFlows& f
             flows.distance_to_target(prepared.pyramid.back(), 1, {}).value(prior_flow.mesh);
         match.flow = std::move(prior_flow);
     }
+    clock.end("prior flow");
     return match;
 }
 

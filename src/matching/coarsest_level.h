@@ -15,6 +15,7 @@
 #include "matching/level_flow.h"
 #include "matching/prepare.h"
 #include "matching/spectral_descriptors.h"
+#include "matching/stopwatch.h"
 
 namespace genflow::detail {
 
@@ -34,9 +35,11 @@ struct CoarsestMatch {
 
 /// The coarsest level of `prepared`'s pyramid matched. `spectral` analyses that level; it is
 /// needed with several starts or guided rounds (runs_guided_rounds()), else may be null.
+/// `clock` times the level's stages (MatchResult::stage_times).
 [[nodiscard]] CoarsestMatch match_coarsest_level(const Prepared& prepared, const LevelFlows& flows,
                                                  const SpectralDescriptors* spectral,
                                                  const MatchOptions& options, double diagonal,
-                                                 const std::atomic<bool>& cancelled);
+                                                 const std::atomic<bool>& cancelled,
+                                                 StageClock& clock);
 
 }  // namespace genflow::detail

@@ -256,7 +256,7 @@ void FinerLevels::refine_further(int l, FlowResult& flow) {
     }
 }
 
-FinerMatch FinerLevels::match(const Eigen::MatrixX3d& coarsest) {
+FinerMatch FinerLevels::match(const Eigen::MatrixX3d& coarsest, StageClock& clock) {
     coarsest_deformed_ = coarsest;
     const int count = static_cast<int>(pyramid_.size());
     // The second coarsest level is the first to resolve what the coarsest could not (a hand,
@@ -267,7 +267,7 @@ FinerMatch FinerLevels::match(const Eigen::MatrixX3d& coarsest) {
                          options_.refinement.enabled && options_.refinement.guidances > 0;
     Eigen::MatrixX3d current = coarsest;
     for (int l = count - 2; l >= 0 && !cancelled_; --l) {
-        const auto clock = std::chrono::steady_clock::now();
+        const auto level_start = std::chrono::steady_clock::now();
         const TriangleMesh moved = carry_to(l, current);
         flows_.tell(l, "carried", moved);
         const bool refined_level = refines && l == count - 2;
@@ -276,10 +276,12 @@ FinerMatch FinerLevels::match(const Eigen::MatrixX3d& coarsest) {
             refined_level ? refine(l, moved)
                           : flows_.flow(l, moved, options_.fine_iterations, start_, options_.prior);
         flows_.tell(l, "flowed", flow.mesh);
+        clock.end(refined_level ? "refinement" : "finer flows");
         if (checked_level) {
             refine_further(l, flow);
+            clock.end("refined level checks");
         }
-        match_.levels.push_back(level_report(level(l), flow, seconds_since(clock)));
+        match_.levels.push_back(level_report(level(l), flow, seconds_since(level_start)));
         flows_.tell(l, "done", flow.mesh);
         current = std::move(flow.mesh.V);
     }

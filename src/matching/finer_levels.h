@@ -16,6 +16,7 @@
 #include "matching/level_flow.h"
 #include "matching/prepare.h"
 #include "matching/spectral_descriptors.h"
+#include "matching/stopwatch.h"
 #include "matching/swapped_limbs.h"
 
 namespace genflow::detail {
@@ -42,7 +43,8 @@ public:
 
     /// The levels below the coarsest, from its result `coarsest` (its deformed vertices).
     /// Once cancelled, the last result reached is carried up to the input's resolution.
-    [[nodiscard]] FinerMatch match(const Eigen::MatrixX3d& coarsest);
+    /// `clock` times the levels' stages (MatchResult::stage_times).
+    [[nodiscard]] FinerMatch match(const Eigen::MatrixX3d& coarsest, StageClock& clock);
 
 private:
     [[nodiscard]] TriangleMesh carry_to(int l, const Eigen::MatrixX3d& coarse_deformed) const;

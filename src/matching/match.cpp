@@ -143,17 +143,18 @@ namespace {
 MatchResult read_match(const detail::Prepared& prepared,
                        const detail::SpectralDescriptors* analysis,
                        const TriangleMesh& template_mesh, const MatchOptions& options,
-                       double diagonal, std::atomic<bool>& cancelled, detail::FlowMemo& memo) {
+                       double diagonal, std::atomic<bool>& cancelled, detail::FlowMemo& memo,
+                       detail::StageClock& clock) {
     MatchResult result;
     result.alignment_seconds = prepared.alignment_seconds;
     const std::vector<detail::Level>& pyramid = prepared.pyramid;
     const int count = static_cast<int>(pyramid.size());
 
     // The coarsest level: the template put on the target as a whole (coarsest_level.h).
-    const auto clock = std::chrono::steady_clock::now();
+    const auto level_start = std::chrono::steady_clock::now();
     const detail::LevelFlows flows(pyramid, options, diagonal, cancelled, &memo);
-    detail::CoarsestMatch coarsest =
-        detail::match_coarsest_level(prepared, flows, analysis, options, diagonal, cancelled);
+    detail::CoarsestMatch coarsest = detail::match_coarsest_level(
+        prepared, flows, analysis, options, diagonal, cancelled, clock);
     result.initial_alignment = coarsest.start;
     result.stretch_weight = coarsest.stretch_weight;
     result.eigenfunction_guidance = coarsest.eigenfunction_guidance;
@@ -163,8 +164,9 @@ MatchResult read_match(const detail::Prepared& prepared,
     result.alternative_starts = coarsest.alternative_starts;
     result.alternative_start = coarsest.alternative_start;
     result.swapped_limbs = coarsest.swapped_limbs;
-    result.levels.push_back(detail::level_report(
-        pyramid.back(), coarsest.flow, prepared.pyramid_seconds + detail::seconds_since(clock)));
+    result.levels.push_back(
+        detail::level_report(pyramid.back(), coarsest.flow,
+                             prepared.pyramid_seconds + detail::seconds_since(level_start)));
     flows.tell(count - 1, "coarsest", coarsest.flow.mesh);
     if (analysis != nullptr) {
         result.intrinsic_disagreement = detail::disagreement(*analysis, coarsest.flow.mesh.V);
@@ -173,7 +175,7 @@ MatchResult read_match(const detail::Prepared& prepared,
     // The finer levels: carried, refined, flowed (finer_levels.h).
     detail::FinerLevels finer(pyramid, flows, analysis, options, diagonal, cancelled,
                               coarsest.start, coarsest.stretch_weight);
-    detail::FinerMatch finest = finer.match(coarsest.flow.mesh.V);
+    detail::FinerMatch finest = finer.match(coarsest.flow.mesh.V, clock);
     result.levels.insert(result.levels.end(), finest.levels.begin(), finest.levels.end());
     result.refinement_guidance = finest.refinement_guidance;
     result.turned_parts = finest.turned_parts;
@@ -187,16 +189,18 @@ MatchResult read_match(const detail::Prepared& prepared,
 
 // The signatures' reading (signatures_reading.h) beside `first`: the one whose map commutes
 // better is returned. Without the eigenbases (Lanczos did not converge) the first stands. The
-// flows the first reading ran unguided by the eigenfunctions come from `memo`.
+// flows the first reading ran unguided by the eigenfunctions come from `memo`. The second
+// reading is timed as one stage, by the caller.
 MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
                             const detail::SpectralDescriptors* analysis,
                             const TriangleMesh& template_mesh, const TriangleMesh& target,
                             const detail::FinestBases& bases, const MatchOptions& options,
                             double diagonal, std::atomic<bool>& cancelled, detail::FlowMemo& memo) {
     const detail::ReadingJudge judge(bases, target);
+    detail::StageClock reading_clock;
     MatchResult reading =
         read_match(prepared, analysis, template_mesh, detail::signatures_reading_options(options),
-                   diagonal, cancelled, memo);
+                   diagonal, cancelled, memo, reading_clock);
     if (cancelled) {
         return first;
     }
@@ -226,42 +230,47 @@ void find_counterparts(MatchResult& result, const TriangleMesh& target,
     result.counterparts = detail::closest_counterparts(result.deformed.V, target);
 }
 
-// match() on surfaces that repair_surface() leaves as they are: the pipeline's stages.
+// match() on surfaces that repair_surface() leaves as they are: the pipeline's stages, each
+// timed by `clock`.
 MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh& target,
-                           const MatchOptions& options) {
+                           const MatchOptions& options, detail::StageClock& clock) {
     const auto start = std::chrono::steady_clock::now();
     const double diagonal = bounding_box_diagonal(target);
 
     // Rigid starts, scale and the pyramid (prepare.h).
-    const detail::Prepared prepared = detail::prepare(template_mesh, target, options);
+    const detail::Prepared prepared = detail::prepare(template_mesh, target, options, &clock);
 
     // The coarsest level's intrinsic analysis, which judges starts and guides the flows.
-    const auto clock = std::chrono::steady_clock::now();
+    const auto analysis_start = std::chrono::steady_clock::now();
     std::optional<detail::SpectralDescriptors> spectral;
     if (prepared.starts.size() > 1 || detail::runs_guided_rounds(options)) {
         spectral.emplace(prepared.pyramid.back().template_mesh, prepared.pyramid.back().target);
     }
     const detail::SpectralDescriptors* analysis = spectral ? &*spectral : nullptr;
-    const double analysis_seconds = detail::seconds_since(clock);
+    const double analysis_seconds = detail::seconds_since(analysis_start);
+    clock.end("coarsest analysis");
 
     // The finest surfaces' eigenbases, for the stages that read the whole match intrinsically.
     std::optional<detail::FinestBases> bases;
     if (detail::reads_with_signatures(options) || options.counterparts.enabled) {
         bases = detail::finest_bases(template_mesh, target);
     }
+    clock.end("finest bases");
 
     // The match, read with the eigenfunctions and, where they guide it, with the signatures.
     std::atomic<bool> cancelled = false;
     detail::FlowMemo memo;
     MatchResult result =
-        read_match(prepared, analysis, template_mesh, options, diagonal, cancelled, memo);
+        read_match(prepared, analysis, template_mesh, options, diagonal, cancelled, memo, clock);
     if (detail::reads_with_signatures(options) && bases && !cancelled) {
         result = judged_readings(std::move(result), prepared, analysis, template_mesh, target,
                                  *bases, options, diagonal, cancelled, memo);
+        clock.end("signatures reading");
     }
 
     // Each template vertex's counterpart on the target.
     find_counterparts(result, target, bases && !cancelled ? &*bases : nullptr, options);
+    clock.end("counterparts");
     result.levels.front().seconds += analysis_seconds;
     result.seconds = detail::seconds_since(start);
     return result;
@@ -272,16 +281,21 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
 MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                   const MatchOptions& options) {
     check_inputs(template_mesh, target, options);
+    detail::StageClock clock;
     const RepairedSurface repaired_template = repair_surface(template_mesh);
     const RepairedSurface repaired_target = repair_surface(target);
+    clock.end("repair");
     if (!repaired_template.changed() && !repaired_target.changed()) {
-        return match_surfaces(template_mesh, target, options);
+        MatchResult result = match_surfaces(template_mesh, target, options, clock);
+        result.stage_times = clock.times();
+        return result;
     }
     MatchOptions on_repaired = options;
     if (options.parts) {
         on_repaired.parts = restrict_to(*options.parts, repaired_template.source_vertex);
     }
-    MatchResult result = match_surfaces(repaired_template.mesh, repaired_target.mesh, on_repaired);
+    MatchResult result =
+        match_surfaces(repaired_template.mesh, repaired_target.mesh, on_repaired, clock);
     result.deformed =
         TriangleMesh{detail::carried_back(repaired_template, template_mesh.V, result.deformed.V),
                      template_mesh.F};
@@ -289,6 +303,8 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                                                        result.deformed.V, target);
     result.template_repairs = repaired_template.summary();
     result.target_repairs = repaired_target.summary();
+    clock.end("repair");
+    result.stage_times = clock.times();
     return result;
 }
 

@@ -10,6 +10,7 @@
 #include "genflow/matching/match.h"
 #include "genflow/matching/multiresolution.h"
 #include "genflow/matching/rigid_alignment.h"
+#include "matching/stopwatch.h"
 
 namespace genflow::detail {
 
@@ -40,8 +41,9 @@ struct Prepared {
 };
 
 /// The rigid starts, the intrinsic starts' scale and the pyramid of `template_mesh` and
-/// `target` (checked by match()).
+/// `target` (checked by match()); `clock`, where given, times the stages "alignment" and
+/// "pyramid".
 [[nodiscard]] Prepared prepare(const TriangleMesh& template_mesh, const TriangleMesh& target,
-                               const MatchOptions& options);
+                               const MatchOptions& options, StageClock* clock = nullptr);
 
 }  // namespace genflow::detail

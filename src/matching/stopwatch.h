@@ -2,7 +2,13 @@
 // The matcher's stages report how long they took (MatchResult, MatchLevel).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
+#include <ctime>
+#include <string_view>
+#include <vector>
+
+#include "genflow/matching/match.h"
 
 namespace genflow::detail {
 
@@ -10,5 +16,35 @@ namespace genflow::detail {
 [[nodiscard]] inline double seconds_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
+
+/// The stages of one match timed one after another (MatchResult::stage_times): end() closes
+/// the stage that began where the previous one ended (or at construction), and a stage ended
+/// twice adds up. Wall time and the process's processor time side by side: on a shared machine
+/// only the second measures the stage.
+class StageClock {
+public:
+    StageClock() : wall_(std::chrono::steady_clock::now()), processor_(std::clock()) {}
+
+    void end(std::string_view stage) {
+        const auto wall = std::chrono::steady_clock::now();
+        const std::clock_t processor = std::clock();
+        auto it = std::find_if(times_.begin(), times_.end(),
+                               [&](const MatchStageTime& t) { return t.stage == stage; });
+        if (it == times_.end()) {
+            it = times_.insert(times_.end(), MatchStageTime{.stage = std::string(stage)});
+        }
+        it->seconds += std::chrono::duration<double>(wall - wall_).count();
+        it->processor_seconds += static_cast<double>(processor - processor_) / CLOCKS_PER_SEC;
+        wall_ = wall;
+        processor_ = processor;
+    }
+
+    [[nodiscard]] const std::vector<MatchStageTime>& times() const { return times_; }
+
+private:
+    std::chrono::steady_clock::time_point wall_;
+    std::clock_t processor_;
+    std::vector<MatchStageTime> times_;
+};
 
 }  // namespace genflow::detail

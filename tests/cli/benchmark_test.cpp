@@ -72,6 +72,23 @@ TEST(BenchmarkCli, ShardsMatchTheSampleAndAResumedRunSummarizesIt) {
     EXPECT_EQ(summary["all"]["mirrored"], 0);
     EXPECT_LT(summary["all"]["mean"].get<double>(), 0.02);
     EXPECT_GT(summary["all"]["processor_seconds_mean"].get<double>(), 0);
+    // Per stage, the mean of the rows' times, in the order the stages ran.
+    const auto& stage_means = summary["all"]["stage_times_mean"];
+    ASSERT_FALSE(stage_means.empty());
+    EXPECT_EQ(stage_means.front()["stage"], "repair");
+    EXPECT_EQ(stage_means.back()["stage"], "counterparts");
+    double alignment = 0;
+    for (const auto& row : summary["rows"]) {
+        for (const auto& stage : row["details"]["stage_times"]) {
+            alignment +=
+                stage["stage"] == "alignment" ? stage["processor_seconds"].get<double>() : 0;
+        }
+    }
+    const auto alignment_mean =
+        std::find_if(stage_means.begin(), stage_means.end(),
+                     [](const auto& s) { return s["stage"] == "alignment"; });
+    ASSERT_NE(alignment_mean, stage_means.end());
+    EXPECT_NEAR((*alignment_mean)["processor_seconds_mean"].get<double>(), alignment / 4, 1e-12);
     ASSERT_EQ(summary["rows"].size(), 4u);
     for (const auto& row : summary["rows"]) {
         const auto same = std::find_if(shard_rows.begin(), shard_rows.end(), [&](const auto& r) {
@@ -80,6 +97,13 @@ TEST(BenchmarkCli, ShardsMatchTheSampleAndAResumedRunSummarizesIt) {
         ASSERT_NE(same, shard_rows.end()) << row.dump();
         EXPECT_EQ((*same)["seconds"], row["seconds"]);         // read back, not matched again
         EXPECT_GT(row["processor_seconds"].get<double>(), 0);  // matching takes processor time
+        // The match's stages are timed within the pair's processor time, by the same clock.
+        double stages = 0;
+        for (const auto& stage : row["details"]["stage_times"]) {
+            stages += stage["processor_seconds"].get<double>();
+        }
+        EXPECT_GT(stages, 0);
+        EXPECT_LE(stages, row["processor_seconds"].get<double>() + 1e-9);
         EXPECT_FALSE(row["mirrored"].get<bool>());
         EXPECT_LT(row["mean"].get<double>(), row["mean_against_mirror"].get<double>());
         EXPECT_TRUE(std::filesystem::exists(

@@ -474,6 +474,18 @@ TEST(Match, PaperPresetFlowsOverTheLevelsAlone) {
     EXPECT_LT(pair.error(result), 0.04);
 }
 
+// The names of `result`'s timed stages, in order; each time is checked to be a time.
+std::vector<std::string> stage_names(const MatchResult& result) {
+    std::vector<std::string> names;
+    for (const MatchStageTime& time : result.stage_times) {
+        names.push_back(time.stage);
+        EXPECT_TRUE(std::isfinite(time.seconds) && time.seconds >= 0) << time.stage;
+        EXPECT_TRUE(std::isfinite(time.processor_seconds) && time.processor_seconds >= 0)
+            << time.stage;
+    }
+    return names;
+}
+
 // Each stage's `enabled` switch turns it off alone: without guided rounds nothing is guided or
 // stretched; without the second opinion none is given; without fits, turn-back and limb
 // exchange none is counted; and the paper preset's result is the one with every switch off.
@@ -512,6 +524,19 @@ TEST(Match, EachStageHasItsOwnSwitch) {
     }
     const MatchResult paper = match(pair.template_mesh, pair.target, off);
     EXPECT_EQ(paper.deformed.V, match(pair.template_mesh, pair.target, switched).deformed.V);
+
+    // Each stage the options run is timed, in the order it ran.
+    const std::vector<std::string> before_the_coarsest_level{
+        "repair", "alignment", "pyramid", "coarsest analysis", "finest bases", "start selection"};
+    std::vector<std::string> expected = before_the_coarsest_level;
+    expected.insert(expected.end(), {"coarsest flow", "finer flows", "counterparts"});
+    EXPECT_EQ(stage_names(paper), expected);
+    EXPECT_EQ(stage_names(unguided), expected);
+    expected = before_the_coarsest_level;
+    expected.insert(expected.end(), {"guided rounds", "second opinion", "alternative starts",
+                                     "limb swaps", "prior flow", "refinement",
+                                     "refined level checks", "signatures reading", "counterparts"});
+    EXPECT_EQ(stage_names(guided), expected);
     // Without the counterparts' stage, a vertex's counterpart is its closest point.
     EXPECT_FALSE(paper.counterparts_moved.has_value());
     const std::vector<SurfacePoint> closest = closest_points(paper.deformed.V, pair.target);

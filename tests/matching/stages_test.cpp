@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
 // The matcher's stages on a generated pair: prepare() (rigid starts, pyramid), the flow of one
-// level (LevelFlows, with its memo), the guided rounds, the coarsest level and the finer levels.
+// level (LevelFlows, with its memo), the guided rounds, the coarsest level and the finer levels;
+// and the clock that times them.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <limits>
+#include <thread>
 #include <utility>
 
 #include "genflow/mesh/primitives.h"
@@ -18,9 +21,30 @@
 #include "matching/prepare.h"
 #include "matching/selection.h"
 #include "matching/spectral_descriptors.h"
+#include "matching/stopwatch.h"
 
 namespace genflow::detail {
 namespace {
+
+// Each end() times the stage since the previous one; a stage ended twice adds up and keeps its
+// first place.
+TEST(StageClock, AddsUpAStageEndedTwiceAndKeepsTheOrder) {
+    using namespace std::chrono_literals;
+    StageClock clock;
+    std::this_thread::sleep_for(10ms);
+    clock.end("first");
+    clock.end("second");
+    std::this_thread::sleep_for(10ms);
+    clock.end("first");
+    ASSERT_EQ(clock.times().size(), 2U);
+    EXPECT_EQ(clock.times()[0].stage, "first");
+    EXPECT_EQ(clock.times()[1].stage, "second");
+    EXPECT_GE(clock.times()[0].seconds, 0.02);  // both sleeps; a sleep lasts at least its time
+    for (const MatchStageTime& time : clock.times()) {
+        EXPECT_GE(time.seconds, 0);
+        EXPECT_GE(time.processor_seconds, 0);
+    }
+}
 
 // The generated limb and another sampling of it, moved: a pair alike up to a similarity.
 struct MovedLimb {
@@ -135,6 +159,7 @@ struct PreparedLimb {
     MatchOptions options;
     Prepared prepared;
     mutable std::atomic<bool> cancelled = false;
+    mutable StageClock clock;
     double diagonal = bounding_box_diagonal(pair.target);
 
     explicit PreparedLimb(MatchOptions base = {}) : options(std::move(base)) {
@@ -215,8 +240,9 @@ TEST(CoarsestLevel, KeepsAStartOnTheTargetAndReportsTheSecondOpinion) {
         PreparedLimb limb(options);
         const SpectralDescriptors analysis = limb.analysis();
         const LevelFlows flows(limb.prepared.pyramid, limb.options, limb.diagonal, limb.cancelled);
-        const CoarsestMatch match = match_coarsest_level(
-            limb.prepared, flows, &analysis, limb.options, limb.diagonal, limb.cancelled);
+        const CoarsestMatch match =
+            match_coarsest_level(limb.prepared, flows, &analysis, limb.options, limb.diagonal,
+                                 limb.cancelled, limb.clock);
         ASSERT_TRUE(match.flow.ok()) << match.flow.message;
         EXPECT_LT(match.flow.energy.back(), match.flow.energy.front());
         EXPECT_LT(disagreement(analysis, match.flow.mesh.V), kDoubtfulDisagreement);
@@ -229,7 +255,7 @@ TEST(CoarsestLevel, KeepsAStartOnTheTargetAndReportsTheSecondOpinion) {
     const SpectralDescriptors analysis = limb.analysis();
     const LevelFlows flows(limb.prepared.pyramid, limb.options, limb.diagonal, limb.cancelled);
     const CoarsestMatch match = match_coarsest_level(limb.prepared, flows, &analysis, limb.options,
-                                                     limb.diagonal, limb.cancelled);
+                                                     limb.diagonal, limb.cancelled, limb.clock);
     ASSERT_TRUE(match.flow.ok()) << match.flow.message;
     bool rigid_start = false;
     for (const Similarity& start : limb.prepared.starts) {
@@ -247,10 +273,10 @@ TEST(FinerLevels, CarryTheCoarsestResultToTheTemplatesResolution) {
     const SpectralDescriptors analysis = limb.analysis();
     const LevelFlows flows(limb.prepared.pyramid, limb.options, limb.diagonal, limb.cancelled);
     const CoarsestMatch coarsest = match_coarsest_level(
-        limb.prepared, flows, &analysis, limb.options, limb.diagonal, limb.cancelled);
+        limb.prepared, flows, &analysis, limb.options, limb.diagonal, limb.cancelled, limb.clock);
     FinerLevels finer(limb.prepared.pyramid, flows, &analysis, limb.options, limb.diagonal,
                       limb.cancelled, coarsest.start, coarsest.stretch_weight);
-    const FinerMatch finest = finer.match(coarsest.flow.mesh.V);
+    const FinerMatch finest = finer.match(coarsest.flow.mesh.V, limb.clock);
     const auto count = limb.prepared.pyramid.size();
     ASSERT_EQ(finest.levels.size(), count - 1);
     EXPECT_EQ(finest.levels.back().template_vertices, limb.pair.template_mesh.V.rows());
@@ -265,7 +291,7 @@ TEST(FinerLevels, CarryTheCoarsestResultToTheTemplatesResolution) {
     const LevelFlows stopped_flows(limb.prepared.pyramid, stopping, limb.diagonal, cancelled);
     FinerLevels stopped(limb.prepared.pyramid, stopped_flows, &analysis, stopping, limb.diagonal,
                         cancelled, coarsest.start, coarsest.stretch_weight);
-    const FinerMatch partial = stopped.match(coarsest.flow.mesh.V);
+    const FinerMatch partial = stopped.match(coarsest.flow.mesh.V, limb.clock);
     EXPECT_TRUE(cancelled);
     EXPECT_LT(partial.levels.size(), count - 1);
     EXPECT_EQ(partial.deformed.rows(), limb.pair.template_mesh.V.rows());
@@ -279,12 +305,12 @@ TEST(FinerLevels, AStageThatKeptNothingLeavesTheMatchAsItWas) {
     const SpectralDescriptors analysis = limb.analysis();
     const LevelFlows flows(limb.prepared.pyramid, limb.options, limb.diagonal, limb.cancelled);
     const CoarsestMatch coarsest = match_coarsest_level(
-        limb.prepared, flows, &analysis, limb.options, limb.diagonal, limb.cancelled);
+        limb.prepared, flows, &analysis, limb.options, limb.diagonal, limb.cancelled, limb.clock);
     const auto finer_match = [&](const MatchOptions& options) {
         const LevelFlows level_flows(limb.prepared.pyramid, options, limb.diagonal, limb.cancelled);
         FinerLevels finer(limb.prepared.pyramid, level_flows, &analysis, options, limb.diagonal,
                           limb.cancelled, coarsest.start, coarsest.stretch_weight);
-        return finer.match(coarsest.flow.mesh.V);
+        return finer.match(coarsest.flow.mesh.V, limb.clock);
     };
     const FinerMatch all = finer_match(limb.options);
     // Each stage: whether it kept anything in the match with all of them, and its switch.

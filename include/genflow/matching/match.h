@@ -255,6 +255,15 @@ struct MatchLevel {
     double seconds = 0;  ///< pyramid, transfer and flow of this level
 };
 
+/// The time one stage of match() took (MatchResult::stage_times).
+struct MatchStageTime {
+    std::string stage;   ///< its name, as MatchResult::stage_times lists them
+    double seconds = 0;  ///< wall time
+    /// The process's processor time over the stage, all its threads: what the stage costs
+    /// whatever else waits for the machine's cores (other work of the same process counts too).
+    double processor_seconds = 0;
+};
+
 /// What match() did, for the report.
 struct MatchResult {
     TriangleMesh deformed;  ///< the template, deformed (its connectivity unchanged)
@@ -316,6 +325,17 @@ struct MatchResult {
     std::string target_repairs;
     double alignment_seconds = 0;
     double seconds = 0;  ///< everything
+    /// Where the time went, stage by stage in the order they ran; each stage the options run
+    /// is listed, and one with nothing to do takes no time: "repair" (repair_surface(), and
+    /// carrying the result back), "alignment" (rigid starts, scale), "pyramid", "coarsest
+    /// analysis" (the coarsest level's signatures and eigenbases), "finest bases", "start
+    /// selection" (the rigid starts' selection flows), then either "coarsest flow" (no guided
+    /// rounds) or "guided rounds" (with the second opinion's beside them when every match asks
+    /// it), "second opinion", "alternative starts", "limb swaps", "prior flow"; per finer level
+    /// "refinement" and "refined level checks" (turn-back, fits, limb swaps) on the second
+    /// coarsest, "finer flows" on the others; "signatures reading" (the whole second reading)
+    /// and "counterparts".
+    std::vector<MatchStageTime> stage_times;
     /// True if intrinsic_disagreement is above kDoubtfulDisagreement: the match is likely to
     /// have put parts on the wrong limb.
     [[nodiscard]] bool doubtful() const;
