@@ -189,23 +189,27 @@ MatchResult read_match(const detail::Prepared& prepared,
 
 // The signatures' reading (signatures_reading.h) beside `first`: the one whose map commutes
 // better is returned. Without the eigenbases (Lanczos did not converge) the first stands. The
-// flows the first reading ran unguided by the eigenfunctions come from `memo`. The second
-// reading is timed as one stage, by the caller.
+// flows the first reading ran unguided by the eigenfunctions come from `memo`. `clock` times the
+// second reading's stages apart from the first's ("signatures reading: …"), and the judge.
 MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
                             const detail::SpectralDescriptors* analysis,
                             const TriangleMesh& template_mesh, const TriangleMesh& target,
                             const detail::FinestBases& bases, const MatchOptions& options,
-                            double diagonal, std::atomic<bool>& cancelled, detail::FlowMemo& memo) {
-    const detail::ReadingJudge judge(bases, target);
-    detail::StageClock reading_clock;
+                            double diagonal, std::atomic<bool>& cancelled, detail::FlowMemo& memo,
+                            detail::StageClock& clock) {
+    clock.name_from_now("signatures reading: ");
     MatchResult reading =
         read_match(prepared, analysis, template_mesh, detail::signatures_reading_options(options),
-                   diagonal, cancelled, memo, reading_clock);
+                   diagonal, cancelled, memo, clock);
     if (cancelled) {
+        clock.name_from_now("");
         return first;
     }
+    const detail::ReadingJudge judge(bases, target);
     const double first_commutativity = judge.commutativity(first.deformed.V);
     const double reading_commutativity = judge.commutativity(reading.deformed.V);
+    clock.end("judge");
+    clock.name_from_now("");
     MatchResult& kept = detail::keeps_signatures_reading(reading_commutativity, first_commutativity)
                             ? reading
                             : first;
@@ -264,8 +268,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
         read_match(prepared, analysis, template_mesh, options, diagonal, cancelled, memo, clock);
     if (detail::reads_with_signatures(options) && bases && !cancelled) {
         result = judged_readings(std::move(result), prepared, analysis, template_mesh, target,
-                                 *bases, options, diagonal, cancelled, memo);
-        clock.end("signatures reading");
+                                 *bases, options, diagonal, cancelled, memo, clock);
     }
 
     // Each template vertex's counterpart on the target.

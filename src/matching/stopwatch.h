@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "genflow/matching/match.h"
@@ -25,13 +27,18 @@ class StageClock {
 public:
     StageClock() : wall_(std::chrono::steady_clock::now()), processor_(std::clock()) {}
 
+    /// The stages ended from now on are named `prefix` + their name: a second reading's stages
+    /// apart from the first's.
+    void name_from_now(std::string prefix) { prefix_ = std::move(prefix); }
+
     void end(std::string_view stage) {
         const auto wall = std::chrono::steady_clock::now();
         const std::clock_t processor = std::clock();
+        const std::string name = prefix_ + std::string(stage);
         auto it = std::find_if(times_.begin(), times_.end(),
-                               [&](const MatchStageTime& t) { return t.stage == stage; });
+                               [&](const MatchStageTime& t) { return t.stage == name; });
         if (it == times_.end()) {
-            it = times_.insert(times_.end(), MatchStageTime{.stage = std::string(stage)});
+            it = times_.insert(times_.end(), MatchStageTime{.stage = name});
         }
         it->seconds += std::chrono::duration<double>(wall - wall_).count();
         it->processor_seconds += static_cast<double>(processor - processor_) / CLOCKS_PER_SEC;
@@ -44,6 +51,7 @@ public:
 private:
     std::chrono::steady_clock::time_point wall_;
     std::clock_t processor_;
+    std::string prefix_;
     std::vector<MatchStageTime> times_;
 };
 

@@ -532,10 +532,20 @@ TEST(Match, EachStageHasItsOwnSwitch) {
     expected.insert(expected.end(), {"coarsest flow", "finer flows", "counterparts"});
     EXPECT_EQ(stage_names(paper), expected);
     EXPECT_EQ(stage_names(unguided), expected);
+    // The second reading's stages are named apart; it has no eigenfunctions, so no refinement:
+    // its second coarsest level flows plainly before its checks.
+    const std::vector<std::string> coarsest_level{"start selection", "guided rounds",
+                                                  "second opinion",  "alternative starts",
+                                                  "limb swaps",      "prior flow"};
     expected = before_the_coarsest_level;
-    expected.insert(expected.end(), {"guided rounds", "second opinion", "alternative starts",
-                                     "limb swaps", "prior flow", "refinement",
-                                     "refined level checks", "signatures reading", "counterparts"});
+    expected.insert(expected.end(), coarsest_level.begin() + 1, coarsest_level.end());
+    expected.insert(expected.end(), {"refinement", "refined level checks"});
+    for (const std::string& stage : coarsest_level) {
+        expected.push_back("signatures reading: " + stage);
+    }
+    expected.insert(expected.end(),
+                    {"signatures reading: finer flows", "signatures reading: refined level checks",
+                     "signatures reading: judge", "counterparts"});
     EXPECT_EQ(stage_names(guided), expected);
     // Without the counterparts' stage, a vertex's counterpart is its closest point.
     EXPECT_FALSE(paper.counterparts_moved.has_value());

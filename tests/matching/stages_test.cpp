@@ -27,7 +27,7 @@ namespace genflow::detail {
 namespace {
 
 // Each end() times the stage since the previous one; a stage ended twice adds up and keeps its
-// first place.
+// first place; a prefix names the stages ended after it apart.
 TEST(StageClock, AddsUpAStageEndedTwiceAndKeepsTheOrder) {
     using namespace std::chrono_literals;
     StageClock clock;
@@ -36,9 +36,14 @@ TEST(StageClock, AddsUpAStageEndedTwiceAndKeepsTheOrder) {
     clock.end("second");
     std::this_thread::sleep_for(10ms);
     clock.end("first");
-    ASSERT_EQ(clock.times().size(), 2U);
+    clock.name_from_now("again: ");
+    clock.end("first");
+    clock.name_from_now("");
+    clock.end("second");
+    ASSERT_EQ(clock.times().size(), 3U);
     EXPECT_EQ(clock.times()[0].stage, "first");
     EXPECT_EQ(clock.times()[1].stage, "second");
+    EXPECT_EQ(clock.times()[2].stage, "again: first");
     EXPECT_GE(clock.times()[0].seconds, 0.02);  // both sleeps; a sleep lasts at least its time
     for (const MatchStageTime& time : clock.times()) {
         EXPECT_GE(time.seconds, 0);

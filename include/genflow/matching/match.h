@@ -333,8 +333,9 @@ struct MatchResult {
     /// rounds) or "guided rounds" (with the second opinion's beside them when every match asks
     /// it), "second opinion", "alternative starts", "limb swaps", "prior flow"; per finer level
     /// "refinement" and "refined level checks" (turn-back, fits, limb swaps) on the second
-    /// coarsest, "finer flows" on the others; "signatures reading" (the whole second reading)
-    /// and "counterparts".
+    /// coarsest, "finer flows" on the others; the second reading's own stages from "start
+    /// selection" on, named "signatures reading: …", and "signatures reading: judge" (the
+    /// commutativity of both readings' maps); "counterparts".
     std::vector<MatchStageTime> stage_times;
     /// True if intrinsic_disagreement is above kDoubtfulDisagreement: the match is likely to
     /// have put parts on the wrong limb.
