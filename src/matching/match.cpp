@@ -146,7 +146,7 @@ MatchResult read_match(const detail::Prepared& prepared,
                        double diagonal, std::atomic<bool>& cancelled, detail::FlowMemo& memo,
                        detail::StageClock& clock) {
     MatchResult result;
-    result.alignment_seconds = prepared.alignment_seconds;
+    result.alignment_seconds = clock.seconds("alignment");
     const std::vector<detail::Level>& pyramid = prepared.pyramid;
     const int count = static_cast<int>(pyramid.size());
 
@@ -166,7 +166,7 @@ MatchResult read_match(const detail::Prepared& prepared,
     result.swapped_limbs = coarsest.swapped_limbs;
     result.levels.push_back(
         detail::level_report(pyramid.back(), coarsest.flow,
-                             prepared.pyramid_seconds + detail::seconds_since(level_start)));
+                             clock.seconds("pyramid") + detail::seconds_since(level_start)));
     flows.tell(count - 1, "coarsest", coarsest.flow.mesh);
     if (analysis != nullptr) {
         result.intrinsic_disagreement = detail::disagreement(*analysis, coarsest.flow.mesh.V);
@@ -242,16 +242,14 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     const double diagonal = bounding_box_diagonal(target);
 
     // Rigid starts, scale and the pyramid (prepare.h).
-    const detail::Prepared prepared = detail::prepare(template_mesh, target, options, &clock);
+    const detail::Prepared prepared = detail::prepare(template_mesh, target, options, clock);
 
     // The coarsest level's intrinsic analysis, which judges starts and guides the flows.
-    const auto analysis_start = std::chrono::steady_clock::now();
     std::optional<detail::SpectralDescriptors> spectral;
     if (prepared.starts.size() > 1 || detail::runs_guided_rounds(options)) {
         spectral.emplace(prepared.pyramid.back().template_mesh, prepared.pyramid.back().target);
     }
     const detail::SpectralDescriptors* analysis = spectral ? &*spectral : nullptr;
-    const double analysis_seconds = detail::seconds_since(analysis_start);
     clock.end("coarsest analysis");
 
     // The finest surfaces' eigenbases, for the stages that read the whole match intrinsically.
@@ -274,7 +272,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // Each template vertex's counterpart on the target.
     find_counterparts(result, target, bases && !cancelled ? &*bases : nullptr, options);
     clock.end("counterparts");
-    result.levels.front().seconds += analysis_seconds;
+    result.levels.front().seconds += clock.seconds("coarsest analysis");
     result.seconds = detail::seconds_since(start);
     return result;
 }

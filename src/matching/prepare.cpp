@@ -2,7 +2,6 @@
 #include "matching/prepare.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 
@@ -87,8 +86,7 @@ std::vector<Level> build_pyramid(const TriangleMesh& template_mesh, const Triang
 }  // namespace
 
 Prepared prepare(const TriangleMesh& template_mesh, const TriangleMesh& target,
-                 const MatchOptions& options, StageClock* clock) {
-    const auto start = std::chrono::steady_clock::now();
+                 const MatchOptions& options, StageClock& clock) {
     Prepared prepared;
     prepared.starts = rigid_starts(template_mesh, target, options);
     // Where the areas mislead (a rough target or template), the intrinsic starts take the
@@ -97,12 +95,8 @@ Prepared prepare(const TriangleMesh& template_mesh, const TriangleMesh& target,
     if (options.starts.enabled && options.starts.alignment.allow_scaling) {
         prepared.volume_scale = volume_scale_where_areas_mislead(template_mesh, target, area_scale);
     }
-    prepared.alignment_seconds = seconds_since(start);
-    if (clock != nullptr) {
-        clock->end("alignment");
-    }
+    clock.end("alignment");
 
-    const auto pyramid_start = std::chrono::steady_clock::now();
     // A target rougher than its shape (more area than its volume gives it) has its coarsest
     // level made from it smoothed by a step of implicit fairing (Δt = 0.5 h²): QEM keeps much
     // of a scan's noise, whose signatures and eigenfunctions then tied right and front-to-back
@@ -118,10 +112,7 @@ Prepared prepare(const TriangleMesh& template_mesh, const TriangleMesh& target,
     }
     prepared.pyramid =
         build_pyramid(template_mesh, target, smoothed_target ? *smoothed_target : target, options);
-    prepared.pyramid_seconds = seconds_since(pyramid_start);
-    if (clock != nullptr) {
-        clock->end("pyramid");
-    }
+    clock.end("pyramid");
     return prepared;
 }
 

@@ -36,14 +36,11 @@ struct Prepared {
     std::optional<double> volume_scale;
     /// Finest first (build_pyramid()).
     std::vector<Level> pyramid;
-    double alignment_seconds = 0;
-    double pyramid_seconds = 0;
 };
 
 /// The rigid starts, the intrinsic starts' scale and the pyramid of `template_mesh` and
-/// `target` (checked by match()); `clock`, where given, times the stages "alignment" and
-/// "pyramid".
+/// `target` (checked by match()); `clock` times the stages "alignment" and "pyramid".
 [[nodiscard]] Prepared prepare(const TriangleMesh& template_mesh, const TriangleMesh& target,
-                               const MatchOptions& options, StageClock* clock = nullptr);
+                               const MatchOptions& options, StageClock& clock);
 
 }  // namespace genflow::detail

@@ -48,6 +48,14 @@ public:
 
     [[nodiscard]] const std::vector<MatchStageTime>& times() const { return times_; }
 
+    /// The wall seconds of the stage named `stage` in full (its prefix included), 0 before it
+    /// ends: what the results that report a stage's time apart read.
+    [[nodiscard]] double seconds(std::string_view stage) const {
+        const auto it = std::find_if(times_.begin(), times_.end(),
+                                     [&](const MatchStageTime& t) { return t.stage == stage; });
+        return it == times_.end() ? 0 : it->seconds;
+    }
+
 private:
     std::chrono::steady_clock::time_point wall_;
     std::clock_t processor_;

@@ -27,7 +27,7 @@ namespace genflow::detail {
 namespace {
 
 // Each end() times the stage since the previous one; a stage ended twice adds up and keeps its
-// first place; a prefix names the stages ended after it apart.
+// first place; a prefix names the stages ended after it apart; seconds() reads one by name.
 TEST(StageClock, AddsUpAStageEndedTwiceAndKeepsTheOrder) {
     using namespace std::chrono_literals;
     StageClock clock;
@@ -45,6 +45,9 @@ TEST(StageClock, AddsUpAStageEndedTwiceAndKeepsTheOrder) {
     EXPECT_EQ(clock.times()[1].stage, "second");
     EXPECT_EQ(clock.times()[2].stage, "again: first");
     EXPECT_GE(clock.times()[0].seconds, 0.02);  // both sleeps; a sleep lasts at least its time
+    EXPECT_EQ(clock.seconds("first"), clock.times()[0].seconds);
+    EXPECT_EQ(clock.seconds("again: first"), clock.times()[2].seconds);
+    EXPECT_EQ(clock.seconds("never"), 0);
     for (const MatchStageTime& time : clock.times()) {
         EXPECT_GE(time.seconds, 0);
         EXPECT_GE(time.processor_seconds, 0);
@@ -65,7 +68,8 @@ TEST(Prepare, BuildsANestedPyramidAndTheRigidStarts) {
     MatchOptions options;
     options.coarse_vertices = 300;
     options.starts.candidates = 3;
-    const Prepared prepared = prepare(pair.template_mesh, pair.target, options);
+    StageClock clock;
+    const Prepared prepared = prepare(pair.template_mesh, pair.target, options, clock);
     ASSERT_GE(prepared.pyramid.size(), 2U);
     EXPECT_EQ(prepared.pyramid.front().template_mesh.V, pair.template_mesh.V);
     EXPECT_EQ(prepared.pyramid.front().target.V, pair.target.V);
@@ -85,7 +89,7 @@ TEST(Prepare, BuildsANestedPyramidAndTheRigidStarts) {
     EXPECT_FALSE(prepared.volume_scale.has_value());  // a smooth target: the areas hold
 
     options.starts.enabled = false;  // the inputs as they are placed
-    const Prepared unaligned = prepare(pair.template_mesh, pair.target, options);
+    const Prepared unaligned = prepare(pair.template_mesh, pair.target, options, clock);
     ASSERT_EQ(unaligned.starts.size(), 1U);
     EXPECT_EQ(unaligned.starts.front().matrix(), Eigen::Matrix4d::Identity());
 }
@@ -96,7 +100,8 @@ TEST(LevelFlows, LowerTheDistanceAndStopWhenCancelled) {
     const MovedLimb pair;
     MatchOptions options;
     options.coarse_vertices = 300;
-    const Prepared prepared = prepare(pair.template_mesh, pair.target, options);
+    StageClock clock;
+    const Prepared prepared = prepare(pair.template_mesh, pair.target, options, clock);
     std::atomic<bool> cancelled = false;
     const LevelFlows flows(prepared.pyramid, options, bounding_box_diagonal(pair.target),
                            cancelled);
@@ -128,7 +133,8 @@ TEST(LevelFlows, AnswerTheCoarsestLevelsRepeatedFlowsFromTheMemo) {
     const MovedLimb pair;
     MatchOptions options;
     options.coarse_vertices = 300;
-    const Prepared prepared = prepare(pair.template_mesh, pair.target, options);
+    StageClock clock;
+    const Prepared prepared = prepare(pair.template_mesh, pair.target, options, clock);
     ASSERT_GE(prepared.pyramid.size(), 2U);
     const double diagonal = bounding_box_diagonal(pair.target);
     std::atomic<bool> cancelled = false;
@@ -174,7 +180,7 @@ struct PreparedLimb {
         options.refinement_iterations = 5;
         options.starts.selection_iterations = 20;
         options.starts.candidates = 2;
-        prepared = prepare(pair.template_mesh, pair.target, options);
+        prepared = prepare(pair.template_mesh, pair.target, options, clock);
     }
     [[nodiscard]] const Level& coarsest() const { return prepared.pyramid.back(); }
     [[nodiscard]] SpectralDescriptors analysis() const {
