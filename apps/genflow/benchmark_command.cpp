@@ -169,6 +169,8 @@ struct PairMap {
     nlohmann::json details = nlohmann::json::object();  // what the method reports of itself
     // A match's closest points, where the counterparts' stage chose other points.
     std::vector<SurfacePoint> closest = {};
+    // The closest points of the reading the match did not keep, where it read twice.
+    std::vector<SurfacePoint> other_reading = {};
     double processor_seconds = 0;  // of the whole process: with one thread a pair, the pair's
 };
 
@@ -188,6 +190,9 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
     map.details["stage_times"] = stage_times_json(result);
     if (result.counterparts_moved) {
         map.closest = closest_points(result.deformed.V, to.mesh);
+    }
+    if (result.other_reading) {
+        map.other_reading = closest_points(*result.other_reading, to.mesh);
     }
     return map;
 }
@@ -231,6 +236,10 @@ nlohmann::json run_pair(const Shape& from, const Shape& to, bool within,
     if (!result.closest.empty()) {
         row["mean_closest_points"] =
             mean_of(measure.errors_at(result.closest, from.reference, to.reference).to_vertex);
+    }
+    if (!result.other_reading.empty()) {
+        row["mean_other_reading"] = mean_of(
+            measure.errors_at(result.other_reading, from.reference, to.reference).to_vertex);
     }
     if (symmetry.found()) {
         std::vector<Eigen::Index> mirrored(to.reference.size());

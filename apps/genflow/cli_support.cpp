@@ -100,6 +100,8 @@ nlohmann::json match_choices(const MatchResult& result) {
             {"signatures_reading", result.signatures_reading},
             {"first_commutativity", number_or_null(result.first_commutativity)},
             {"signatures_commutativity", number_or_null(result.signatures_commutativity)},
+            {"first_orientation", number_or_null(result.first_orientation)},
+            {"signatures_orientation", number_or_null(result.signatures_orientation)},
             {"counterparts_moved", number_or_null(result.counterparts_moved)}};
 }
 

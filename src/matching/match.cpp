@@ -188,9 +188,10 @@ MatchResult read_match(const detail::Prepared& prepared,
 }
 
 // The signatures' reading (signatures_reading.h) beside `first`: the one whose map commutes
-// better is returned. Without the eigenbases (Lanczos did not converge) the first stands. The
-// flows the first reading ran unguided by the eigenfunctions come from `memo`. `clock` times the
-// second reading's stages apart from the first's ("signatures reading: …"), and the judge.
+// better is returned. Without the eigenbases (Lanczos did not converge)
+// the first stands. The flows the first reading ran unguided by the eigenfunctions come from
+// `memo`. `clock` times the second reading's stages apart from the first's ("signatures reading:
+// …"), and the judge.
 MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
                             const detail::SpectralDescriptors* analysis,
                             const TriangleMesh& template_mesh, const TriangleMesh& target,
@@ -205,17 +206,19 @@ MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
         clock.name_from_now("");
         return first;
     }
-    const detail::ReadingJudge judge(bases, target);
-    const double first_commutativity = judge.commutativity(first.deformed.V);
-    const double reading_commutativity = judge.commutativity(reading.deformed.V);
+    const detail::ReadingJudge judge(bases, template_mesh, target);
+    const detail::ReadingScore first_score = judge.score(first.deformed.V);
+    const detail::ReadingScore reading_score = judge.score(reading.deformed.V);
     clock.end("judge");
     clock.name_from_now("");
-    MatchResult& kept = detail::keeps_signatures_reading(reading_commutativity, first_commutativity)
-                            ? reading
-                            : first;
+    MatchResult& kept =
+        detail::keeps_signatures_reading(reading_score, first_score) ? reading : first;
     kept.signatures_reading = &kept == &reading;
-    kept.first_commutativity = first_commutativity;
-    kept.signatures_commutativity = reading_commutativity;
+    kept.first_commutativity = first_score.commutativity;
+    kept.signatures_commutativity = reading_score.commutativity;
+    kept.first_orientation = first_score.orientation_ratio;
+    kept.signatures_orientation = reading_score.orientation_ratio;
+    kept.other_reading = std::move(kept.signatures_reading ? first : reading).deformed.V;
     return std::move(kept);
 }
 
@@ -302,6 +305,10 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                      template_mesh.F};
     result.counterparts = detail::carried_counterparts(repaired_template, result.counterparts,
                                                        result.deformed.V, target);
+    if (result.other_reading) {
+        result.other_reading =
+            detail::carried_back(repaired_template, template_mesh.V, *result.other_reading);
+    }
     result.template_repairs = repaired_template.summary();
     result.target_repairs = repaired_target.summary();
     clock.end("repair");

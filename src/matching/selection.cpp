@@ -88,8 +88,8 @@ bool keeps_turned_back(double distance_after, double distance_before) {
     return distance_after <= kTurnBackAllowance * distance_before;
 }
 
-bool keeps_signatures_reading(double reading_commutativity, double first_commutativity) {
-    return reading_commutativity < first_commutativity;
+bool keeps_signatures_reading(const ReadingScore& reading, const ReadingScore& first) {
+    return reading.commutativity < first.commutativity;
 }
 
 }  // namespace genflow::detail

@@ -111,11 +111,22 @@ struct LimbExchange {
 /// and its signatures about as well.
 [[nodiscard]] bool keeps_limb_exchange(const LimbExchange& exchange);
 
+/// What the judge of the readings (signatures_reading.h) reads of a reading's map.
+struct ReadingScore {
+    /// laplacian_commutativity(): lower for a map nearer an isometry.
+    double commutativity = 0;
+    /// orientation_ratio(): above 1 the map reverses the surface's orientation. None where the
+    /// spectra it needs could not be had.
+    std::optional<double> orientation_ratio;
+};
+
 /// Whether the signatures' reading replaces the first (MatchOptions::signatures_reading): its map
-/// commutes better with the Laplacians (laplacian_commutativity()), which tells the two apart
-/// where the disagreement does not (docs/matching.md, "The signatures' reading").
-[[nodiscard]] bool keeps_signatures_reading(double reading_commutativity,
-                                            double first_commutativity);
+/// commutes better with the Laplacians, which tells a right map from one off as a whole where
+/// the disagreement cannot (docs/matching.md, "The signatures' reading"). The orientation is
+/// reported, not judged: on the development sample no kept map reversed it, and most maps off
+/// as a whole lay the body turned about, which keeps it (docs/benchmarks.md, "The readings off
+/// as a whole lie turned about, not reflected").
+[[nodiscard]] bool keeps_signatures_reading(const ReadingScore& reading, const ReadingScore& first);
 
 /// How much higher d_H may end after parts were turned back and flowed again
 /// (MatchOptions::turn_back): "about as low", a quarter's allowance.

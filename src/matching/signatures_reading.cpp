@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "matching/signatures_reading.h"
 
+#include "genflow/exceptions.h"
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/laplacian_commutativity.h"
 #include "matching/guided_rounds.h"
@@ -18,12 +19,42 @@ MatchOptions signatures_reading_options(const MatchOptions& options) {
     return signatures;
 }
 
-ReadingJudge::ReadingJudge(const FinestBases& bases, const TriangleMesh& target)
-    : bases_(bases), target_(target) {}
+namespace {
 
-double ReadingJudge::commutativity(const Eigen::MatrixX3d& deformed) const {
-    return laplacian_commutativity(bases_.template_basis, target_, bases_.target_basis,
-                                   closest_points(deformed, target_));
+// Per point, the corner of its face it lies nearest to (the largest barycentric coordinate).
+std::vector<Eigen::Index> nearest_corners(const std::vector<SurfacePoint>& points,
+                                          const TriangleMesh& mesh) {
+    std::vector<Eigen::Index> corners;
+    corners.reserve(points.size());
+    for (const SurfacePoint& point : points) {
+        Eigen::Index corner = 0;
+        point.barycentric.maxCoeff(&corner);
+        corners.push_back(mesh.F(point.face, corner));
+    }
+    return corners;
+}
+
+}  // namespace
+
+ReadingJudge::ReadingJudge(const FinestBases& bases, const TriangleMesh& template_mesh,
+                           const TriangleMesh& target)
+    : bases_(bases), target_(target) {
+    try {
+        orientation_.emplace(template_mesh, target);
+    } catch (const SolverError&) {
+        // The commutativity alone judges, then.
+    }
+}
+
+ReadingScore ReadingJudge::score(const Eigen::MatrixX3d& deformed) const {
+    const std::vector<SurfacePoint> map = closest_points(deformed, target_);
+    ReadingScore score;
+    score.commutativity =
+        laplacian_commutativity(bases_.template_basis, target_, bases_.target_basis, map);
+    if (orientation_) {
+        score.orientation_ratio = orientation_->ratio(nearest_corners(map, target_));
+    }
+    return score;
 }
 
 }  // namespace genflow::detail

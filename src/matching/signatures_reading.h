@@ -9,10 +9,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 
 #include "genflow/matching/match.h"
+#include "genflow/matching/spectral_map.h"
 #include "genflow/mesh.h"
 #include "matching/finest_bases.h"
+#include "matching/selection.h"
 
 namespace genflow::detail {
 
@@ -24,19 +27,22 @@ namespace genflow::detail {
 [[nodiscard]] MatchOptions signatures_reading_options(const MatchOptions& options);
 
 /// The judge of the readings: the commutativity (laplacian_commutativity()) of the map each
-/// deformed template implies, in the finest template's and target's eigenbases.
+/// deformed template implies, in the finest template's and target's eigenbases, and whether
+/// that map keeps the surface's orientation (MapOrientation), which the match reports.
 class ReadingJudge {
 public:
-    /// Keeps both by reference.
-    ReadingJudge(const FinestBases& bases, const TriangleMesh& target);
+    /// Keeps `bases` and `target` by reference. The orientation's spectra are computed here.
+    ReadingJudge(const FinestBases& bases, const TriangleMesh& template_mesh,
+                 const TriangleMesh& target);
 
-    /// The commutativity of the map that puts each template vertex on the target's closest
-    /// point to where `deformed` puts it.
-    [[nodiscard]] double commutativity(const Eigen::MatrixX3d& deformed) const;
+    /// The score of the map that puts each template vertex on the target's closest point to
+    /// where `deformed` puts it (for the orientation, on that point's nearest corner).
+    [[nodiscard]] ReadingScore score(const Eigen::MatrixX3d& deformed) const;
 
 private:
     const FinestBases& bases_;
     const TriangleMesh& target_;
+    std::optional<MapOrientation> orientation_;
 };
 
 }  // namespace genflow::detail

@@ -363,24 +363,43 @@ SpectralMap spectral_map(const TriangleMesh& from, const TriangleMesh& to,
     return map;
 }
 
-double orientation_ratio(const TriangleMesh& from, const TriangleMesh& to,
-                         const std::vector<Eigen::Index>& target_vertex,
-                         const SpectralMapOptions& options) {
+struct MapOrientation::Impl {
+    Eigen::Index from_vertices;
+    Eigen::Index to_vertices;
+    Spectrum from;
+    Spectrum to;
+    std::vector<OperatorPair> operators;
+};
+
+MapOrientation::MapOrientation(const TriangleMesh& from, const TriangleMesh& to,
+                               const SpectralMapOptions& options) {
     check_options(options);
     detail::require_valid_mesh(from, "orientation_ratio");
     detail::require_valid_mesh(to, "orientation_ratio");
-    if (static_cast<Eigen::Index>(target_vertex.size()) != from.V.rows() ||
+    impl_ = std::make_unique<Impl>(
+        Impl{from.V.rows(), to.V.rows(), spectrum_of(from, options), spectrum_of(to, options), {}});
+    const Eigen::Index k = std::min({options.orientation_size, impl_->from.basis.functions.cols(),
+                                     impl_->to.basis.functions.cols()});
+    impl_->operators = orientation_operators(from, impl_->from, to, impl_->to, k, options);
+}
+
+MapOrientation::~MapOrientation() = default;
+MapOrientation::MapOrientation(MapOrientation&&) noexcept = default;
+MapOrientation& MapOrientation::operator=(MapOrientation&&) noexcept = default;
+
+double MapOrientation::ratio(const std::vector<Eigen::Index>& target_vertex) const {
+    if (static_cast<Eigen::Index>(target_vertex.size()) != impl_->from_vertices ||
         std::any_of(target_vertex.begin(), target_vertex.end(),
-                    [&](Eigen::Index v) { return v < 0 || v >= to.V.rows(); })) {
+                    [&](Eigen::Index v) { return v < 0 || v >= impl_->to_vertices; })) {
         throw InvalidInput("orientation_ratio: need a vertex of `to` for each vertex of `from`");
     }
-    const Spectrum from_spectrum = spectrum_of(from, options);
-    const Spectrum to_spectrum = spectrum_of(to, options);
-    const Eigen::Index k = std::min({options.orientation_size, from_spectrum.basis.functions.cols(),
-                                     to_spectrum.basis.functions.cols()});
-    return orientation_ratio(
-        from_spectrum, to_spectrum, target_vertex,
-        orientation_operators(from, from_spectrum, to, to_spectrum, k, options));
+    return orientation_ratio(impl_->from, impl_->to, target_vertex, impl_->operators);
+}
+
+double orientation_ratio(const TriangleMesh& from, const TriangleMesh& to,
+                         const std::vector<Eigen::Index>& target_vertex,
+                         const SpectralMapOptions& options) {
+    return MapOrientation(from, to, options).ratio(target_vertex);
 }
 
 }  // namespace genflow

@@ -106,6 +106,13 @@ TEST(BenchmarkCli, ShardsMatchTheSampleAndAResumedRunSummarizesIt) {
         EXPECT_LE(stages, row["processor_seconds"].get<double>() + 1e-9);
         EXPECT_FALSE(row["mirrored"].get<bool>());
         EXPECT_LT(row["mean"].get<double>(), row["mean_against_mirror"].get<double>());
+        // The match read twice: the reading it did not keep is measured too, and the kept
+        // one's map keeps the surface's orientation.
+        EXPECT_GE(row["mean_other_reading"].get<double>(), 0);
+        const auto& details = row["details"];
+        const bool signatures = details["signatures_reading"].get<bool>();
+        EXPECT_LT(
+            details[signatures ? "signatures_orientation" : "first_orientation"].get<double>(), 1);
         EXPECT_TRUE(std::filesystem::exists(
             directory / "out" / "pairs" /
             (row["from"].get<std::string>() + "-" + row["to"].get<std::string>() + ".map.txt")));

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "genflow/matching/match.h"
 
@@ -115,6 +116,23 @@ TEST(Selection, KeepLowestCountsEveryFlowAndKeepsTheFirstWhenCancelled) {
     EXPECT_EQ(kept.steps, 60);
     cancelled = true;
     EXPECT_EQ(keep_lowest(flows, cancelled, rate).index, 0U);
+}
+
+ReadingScore commuting(double commutativity, std::optional<double> orientation = 0.2) {
+    ReadingScore score;
+    score.commutativity = commutativity;
+    score.orientation_ratio = orientation;
+    return score;
+}
+
+// The reading whose map commutes better is kept; a tie keeps the first. The orientation is
+// reported, not judged (docs/benchmarks.md, "The readings off as a whole lie turned about").
+TEST(Selection, SignaturesReadingKeptWhereItCommutesBetter) {
+    EXPECT_TRUE(keeps_signatures_reading(commuting(0.02), commuting(0.03)));
+    EXPECT_FALSE(keeps_signatures_reading(commuting(0.03), commuting(0.02)));
+    EXPECT_FALSE(keeps_signatures_reading(commuting(0.02), commuting(0.02)));
+    EXPECT_TRUE(keeps_signatures_reading(commuting(0.02, 3.0), commuting(0.03)));
+    EXPECT_FALSE(keeps_signatures_reading(commuting(0.03, std::nullopt), commuting(0.02, 3.0)));
 }
 
 }  // namespace

@@ -5,24 +5,10 @@
 
 #include "genflow/exceptions.h"
 #include "genflow/operators/mesh_size.h"
-#include "spatial/point_index.h"
 #include "support/test_meshes.h"
 
 namespace genflow {
 namespace {
-
-// Each vertex of the spiked figure at rest (symmetric across x = 0) with the vertex nearest to
-// its mirror image: the figure's one isometry, which reverses its orientation.
-std::vector<Eigen::Index> mirror_of(const TriangleMesh& figure) {
-    Eigen::MatrixX3d mirrored = figure.V;
-    mirrored.col(0) *= -1;
-    const detail::PointIndex index(figure.V);
-    std::vector<Eigen::Index> mirror;
-    for (Eigen::Index v = 0; v < figure.V.rows(); ++v) {
-        mirror.push_back(index.nearest(mirrored.row(v).transpose()).first);
-    }
-    return mirror;
-}
 
 // The figure's template against its posed, resampled, turned and scaled target: the map puts
 // each template vertex near where it belongs, and not on its mirror image, which preserves the
@@ -38,7 +24,7 @@ TEST(SpectralMap, MapsThePosedFigureWithoutMirroringIt) {
     // The same map after the template's own reflection: about as far from the truth as the
     // figure is wide, and the ratio says it reverses the orientation.
     std::vector<Eigen::Index> mirrored;
-    for (const Eigen::Index v : mirror_of(figure.template_mesh)) {
+    for (const Eigen::Index v : test::figure_mirror(figure.template_mesh)) {
         mirrored.push_back(map.target_vertex[static_cast<std::size_t>(v)]);
     }
     EXPECT_GT(figure.mean_distance(figure.target.V(mirrored, Eigen::all)), 0.1);
@@ -54,6 +40,28 @@ TEST(SpectralMap, RefusesBadOptionsAndMaps) {
     options.signed_bands = {5, 100};
     EXPECT_THROW((void)spectral_map(figure, figure, options), InvalidInput);
     EXPECT_THROW((void)orientation_ratio(figure, figure, {0, 1}), InvalidInput);
+    const MapOrientation orientation(figure, figure);
+    EXPECT_THROW((void)orientation.ratio({0, 1}), InvalidInput);
+    std::vector<Eigen::Index> outside(static_cast<std::size_t>(figure.V.rows()), 0);
+    outside.back() = figure.V.rows();
+    EXPECT_THROW((void)orientation.ratio(outside), InvalidInput);
+}
+
+// MapOrientation computes the spectra once and scores each map as orientation_ratio() does.
+TEST(MapOrientation, ScoresEachMapAsOrientationRatioDoes) {
+    const test::PosedSpikedFigure figure;
+    const SpectralMap map = spectral_map(figure.template_mesh, figure.target);
+    std::vector<Eigen::Index> mirrored;
+    for (const Eigen::Index v : test::figure_mirror(figure.template_mesh)) {
+        mirrored.push_back(map.target_vertex[static_cast<std::size_t>(v)]);
+    }
+    const MapOrientation orientation(figure.template_mesh, figure.target);
+    for (const std::vector<Eigen::Index>& vertices : {map.target_vertex, mirrored}) {
+        EXPECT_EQ(orientation.ratio(vertices),
+                  orientation_ratio(figure.template_mesh, figure.target, vertices));
+    }
+    EXPECT_LT(orientation.ratio(map.target_vertex), 1);
+    EXPECT_GT(orientation.ratio(mirrored), 1);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 
 #include "genflow/mesh/primitives.h"
 #include "genflow/operators/mesh_size.h"
+#include "spatial/point_index.h"
 
 namespace genflow::test {
 
@@ -70,6 +71,17 @@ TriangleMesh spiked_figure(int level, std::uint64_t sampling_seed) {
         mesh.V.row(i) = radius * u;
     }
     return mesh;
+}
+
+std::vector<Eigen::Index> figure_mirror(const TriangleMesh& figure) {
+    Eigen::MatrixX3d mirrored = figure.V;
+    mirrored.col(0) *= -1;
+    const detail::PointIndex index(figure.V);
+    std::vector<Eigen::Index> mirror;
+    for (Eigen::Index v = 0; v < figure.V.rows(); ++v) {
+        mirror.push_back(index.nearest(mirrored.row(v).transpose()).first);
+    }
+    return mirror;
 }
 
 PosedSpikedFigure::PosedSpikedFigure()

@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh.h"
@@ -30,6 +31,10 @@ Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, unsigned see
 /// its only symmetry (a map that follows it turns the surface over). Sampled as
 /// make_ellipsoid(level, 1, sampling_seed): two seeds sample the same surface differently.
 TriangleMesh spiked_figure(int level, std::uint64_t sampling_seed);
+
+/// Each vertex of a spiked figure at rest (symmetric across x = 0) with the vertex nearest to
+/// its mirror image: the figure's one isometry, which reverses its orientation.
+std::vector<Eigen::Index> figure_mirror(const TriangleMesh& figure);
 
 /// A pair of spiked figures: the template at rest (level 3), and the target, another sampling
 /// (level 4, 4× the vertices) with every spike bent by 60–100° (each its own angle, about its

@@ -308,10 +308,16 @@ struct MatchResult {
     /// fields say where the coarsest result it started from came from.
     int swapped_limbs = 0;
     /// Whether the signatures' reading was kept (MatchOptions::signatures_reading), and the
-    /// commutativity of each reading's map (laplacian_commutativity()), where it ran.
+    /// commutativity of each reading's map (laplacian_commutativity()) and its orientation
+    /// (orientation_ratio(): above 1 it reverses it), where the reading ran.
     bool signatures_reading = false;
     std::optional<double> first_commutativity;
     std::optional<double> signatures_commutativity;
+    std::optional<double> first_orientation;
+    std::optional<double> signatures_orientation;
+    /// Where both readings ran, the template's vertices as the reading not kept deformed them
+    /// (in `deformed`'s order): to look at beside the kept one, or to judge the judge.
+    std::optional<Eigen::MatrixX3d> other_reading;
     /// How far the coarsest level's result disagrees with the target intrinsically (the
     /// median heat-kernel-signature discrepancy of where its vertices landed, over the
     /// consistency of the functional map that placement implies; the measure that chooses

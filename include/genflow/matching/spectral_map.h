@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "genflow/mesh.h"
@@ -84,5 +85,25 @@ struct SpectralMap {
 [[nodiscard]] double orientation_ratio(const TriangleMesh& from, const TriangleMesh& to,
                                        const std::vector<Eigen::Index>& target_vertex,
                                        const SpectralMapOptions& options = {});
+
+/// orientation_ratio() of any number of maps between the same two surfaces: their spectra and
+/// orientation operators are computed once, at construction.
+class MapOrientation {
+public:
+    /// \throws InvalidInput as orientation_ratio(); SolverError if an eigen-solve fails.
+    MapOrientation(const TriangleMesh& from, const TriangleMesh& to,
+                   const SpectralMapOptions& options = {});
+    ~MapOrientation();
+    MapOrientation(MapOrientation&&) noexcept;
+    MapOrientation& operator=(MapOrientation&&) noexcept;
+
+    /// The ratio of the map `target_vertex` (a vertex of `to` per vertex of `from`).
+    /// \throws InvalidInput if it is not such a map.
+    [[nodiscard]] double ratio(const std::vector<Eigen::Index>& target_vertex) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace genflow
