@@ -188,10 +188,9 @@ MatchResult read_match(const detail::Prepared& prepared,
 }
 
 // The signatures' reading (signatures_reading.h) beside `first`: the one whose map commutes
-// better is returned. Without the eigenbases (Lanczos did not converge)
-// the first stands. The flows the first reading ran unguided by the eigenfunctions come from
-// `memo`. `clock` times the second reading's stages apart from the first's ("signatures reading:
-// …"), and the judge.
+// better is returned. Without the eigenbases (Lanczos did not converge) the first stands. The
+// flows the first reading ran unguided by the eigenfunctions come from `memo`. `clock` times the
+// second reading's stages apart from the first's ("signatures reading: …"), and the judge.
 MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
                             const detail::SpectralDescriptors* analysis,
                             const TriangleMesh& template_mesh, const TriangleMesh& target,

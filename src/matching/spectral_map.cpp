@@ -387,18 +387,29 @@ MapOrientation::~MapOrientation() = default;
 MapOrientation::MapOrientation(MapOrientation&&) noexcept = default;
 MapOrientation& MapOrientation::operator=(MapOrientation&&) noexcept = default;
 
-double MapOrientation::ratio(const std::vector<Eigen::Index>& target_vertex) const {
-    if (static_cast<Eigen::Index>(target_vertex.size()) != impl_->from_vertices ||
+namespace {
+
+// Refuses a `target_vertex` that is not a vertex of `to` (of `to_vertices`) per vertex of `from`.
+void check_vertex_map(const std::vector<Eigen::Index>& target_vertex, Eigen::Index from_vertices,
+                      Eigen::Index to_vertices) {
+    if (static_cast<Eigen::Index>(target_vertex.size()) != from_vertices ||
         std::any_of(target_vertex.begin(), target_vertex.end(),
-                    [&](Eigen::Index v) { return v < 0 || v >= impl_->to_vertices; })) {
+                    [&](Eigen::Index v) { return v < 0 || v >= to_vertices; })) {
         throw InvalidInput("orientation_ratio: need a vertex of `to` for each vertex of `from`");
     }
+}
+
+}  // namespace
+
+double MapOrientation::ratio(const std::vector<Eigen::Index>& target_vertex) const {
+    check_vertex_map(target_vertex, impl_->from_vertices, impl_->to_vertices);
     return orientation_ratio(impl_->from, impl_->to, target_vertex, impl_->operators);
 }
 
 double orientation_ratio(const TriangleMesh& from, const TriangleMesh& to,
                          const std::vector<Eigen::Index>& target_vertex,
                          const SpectralMapOptions& options) {
+    check_vertex_map(target_vertex, from.V.rows(), to.V.rows());  // before the eigen-solves
     return MapOrientation(from, to, options).ratio(target_vertex);
 }
 

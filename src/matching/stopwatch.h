@@ -35,8 +35,7 @@ public:
         const auto wall = std::chrono::steady_clock::now();
         const std::clock_t processor = std::clock();
         const std::string name = prefix_ + std::string(stage);
-        auto it = std::find_if(times_.begin(), times_.end(),
-                               [&](const MatchStageTime& t) { return t.stage == name; });
+        auto it = find(times_, name);
         if (it == times_.end()) {
             it = times_.insert(times_.end(), MatchStageTime{.stage = name});
         }
@@ -51,12 +50,18 @@ public:
     /// The wall seconds of the stage named `stage` in full (its prefix included), 0 before it
     /// ends: what the results that report a stage's time apart read.
     [[nodiscard]] double seconds(std::string_view stage) const {
-        const auto it = std::find_if(times_.begin(), times_.end(),
-                                     [&](const MatchStageTime& t) { return t.stage == stage; });
+        const auto it = find(times_, stage);
         return it == times_.end() ? 0 : it->seconds;
     }
 
 private:
+    // The stage named `stage` in `times` (const or not), or its end.
+    template <typename Times>
+    static auto find(Times& times, std::string_view stage) -> decltype(times.begin()) {
+        return std::find_if(times.begin(), times.end(),
+                            [&](const MatchStageTime& t) { return t.stage == stage; });
+    }
+
     std::chrono::steady_clock::time_point wall_;
     std::clock_t processor_;
     std::string prefix_;
