@@ -150,6 +150,9 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
                      "Do not make the match again with the eigenfunctions off (guided by the "
                      "heat kernel signatures alone), whose result is kept if its map commutes "
                      "better with the surfaces' Laplacians");
+    command.add_flag("--report-orientation", flags.report_orientation,
+                     "Report whether each reading's map keeps the surface's orientation (the "
+                     "ratio above 1 where it reverses it; two eigen-solves of the whole meshes)");
     command.add_flag("--no-counterparts", flags.no_counterparts,
                      "Give each template vertex as its counterpart (--correspondence) the "
                      "target's closest point to where the match put it, not the point near it "
@@ -199,6 +202,8 @@ MatchOptions resolved(const MatchFlags& flags, bool has_parts) {
         options.guided.signature_fallback && !flags.no_signature_fallback;
     options.signatures_reading.enabled =
         options.signatures_reading.enabled && !flags.no_signatures_reading;
+    options.signatures_reading.report_orientation =
+        options.signatures_reading.report_orientation || flags.report_orientation;
     return options;
 }
 

@@ -20,6 +20,7 @@ struct MatchFlags {
     bool no_limb_swaps = false;
     bool no_signature_fallback = false;
     bool no_signatures_reading = false;
+    bool report_orientation = false;
     bool no_counterparts = false;
 };
 

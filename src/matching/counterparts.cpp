@@ -6,9 +6,14 @@
 #include <string>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "genflow/exceptions.h"
 #include "genflow/matching/correspondence.h"
 #include "matching/functional_map.h"
+#include "spatial/point_index.h"
 
 namespace genflow::detail {
 
@@ -83,7 +88,54 @@ std::vector<Eigen::Index> nearest_corners(const TriangleMesh& target,
     return corners;
 }
 
+// The squared distance between row i of `a` and row j of `b` in the joint embedding.
+double joint_distance2(const JointEmbedding& a, Eigen::Index i, const JointEmbedding& b,
+                       Eigen::Index j, double weight2) {
+    return (a.functions.row(i) - b.functions.row(j)).squaredNorm() +
+           weight2 * (a.positions.row(i) - b.positions.row(j)).squaredNorm();
+}
+
 }  // namespace
+
+// The distance D to the row `previous` bounds the answer's, and w²|x − y|² ≤ D keeps every
+// target row that could be nearer. The positions weigh so much in intrinsic_counterparts() (a
+// move of `reach` costs an unrelated point's mismatch) that this is a few dozen rows where the
+// whole target has thousands.
+std::vector<Eigen::Index> nearest_in_joint_embedding(const JointEmbedding& queries,
+                                                     const JointEmbedding& targets, double weight,
+                                                     const PointIndex& index,
+                                                     const std::vector<Eigen::Index>& previous) {
+    if (!std::isfinite(weight) || weight <= 0) {
+        throw InvalidInput(
+            "nearest_in_joint_embedding: the positions' weight must be positive, got " +
+            std::to_string(weight));
+    }
+    const double weight2 = weight * weight;
+    const auto count = static_cast<std::ptrdiff_t>(previous.size());
+    std::vector<Eigen::Index> nearest(previous.size());
+#pragma omp parallel
+    {
+        std::vector<std::pair<std::uint32_t, double>> near;
+#pragma omp for schedule(static, 256)
+        for (std::ptrdiff_t k = 0; k < count; ++k) {
+            const auto i = static_cast<Eigen::Index>(k);
+            Eigen::Index best = previous[static_cast<std::size_t>(k)];
+            double smallest = joint_distance2(queries, i, targets, best, weight2);
+            // (1 + 1e-9): rounding must not leave out a row as near as the bound.
+            index.within(queries.positions.row(i).transpose(), smallest / weight2 * (1 + 1e-9),
+                         near);
+            for (const auto& [j, unused] : near) {
+                const double d = joint_distance2(queries, i, targets, j, weight2);
+                if (d < smallest || (d == smallest && j < best)) {
+                    smallest = d;
+                    best = j;
+                }
+            }
+            nearest[static_cast<std::size_t>(k)] = best;
+        }
+    }
+    return nearest;
+}
 
 Eigen::MatrixX3d closest_counterparts(const Eigen::MatrixX3d& deformed,
                                       const TriangleMesh& target) {
@@ -104,6 +156,8 @@ Counterparts intrinsic_counterparts(const LaplacianEigenbasis& template_basis,
     const Eigen::MatrixX3d places = positions_of(closest) / unit;
     const Eigen::MatrixX3d vertices = target.V / unit;
 
+    const PointIndex index(vertices);
+
     const std::vector<Eigen::Index> start = nearest_corners(target, closest);
     std::vector<Eigen::Index> correspondence = start;
     for (const Eigen::Index size : sizes_up_to(from.cols())) {
@@ -112,11 +166,9 @@ Counterparts intrinsic_counterparts(const LaplacianEigenbasis& template_basis,
         // Two unrelated points differ by about √(2·size) in `size` functions of mean square
         // 1: a move of `reach` costs as much, so counterparts stay within about that reach.
         const double weight = std::sqrt(2.0 * static_cast<double>(size)) / options.reach;
-        Eigen::MatrixXd query(from.rows(), size + 3);
-        query << from.leftCols(size) * C, weight * places;
-        Eigen::MatrixXd candidates(to.rows(), size + 3);
-        candidates << to.leftCols(size), weight * vertices;
-        correspondence = nearest_rows(query, candidates);
+        correspondence = nearest_in_joint_embedding({from.leftCols(size) * C, places},
+                                                    {to.leftCols(size), vertices}, weight, index,
+                                                    correspondence);
     }
     Counterparts counterparts{target.V(correspondence, Eigen::all), 0};
     for (std::size_t i = 0; i < start.size(); ++i) {

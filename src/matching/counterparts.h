@@ -13,10 +13,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "genflow/matching/match.h"
 #include "genflow/mesh.h"
 #include "genflow/operators/laplacian_eigenbasis.h"
+#include "spatial/point_index.h"
 
 namespace genflow::detail {
 
@@ -24,6 +26,22 @@ namespace genflow::detail {
 /// `target`'s surface.
 [[nodiscard]] Eigen::MatrixX3d closest_counterparts(const Eigen::MatrixX3d& deformed,
                                                     const TriangleMesh& target);
+
+/// Points of a joint embedding (f, w x): functions f (a row per point) and positions x, whose
+/// weight w the search takes.
+struct JointEmbedding {
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> functions;
+    const Eigen::MatrixX3d& positions;
+};
+
+/// Per row of `queries`, the nearest row of `targets` in the joint embedding (the first of
+/// equals), as a search of every target row finds it, but looking only near the query's
+/// position: `index` holds `targets.positions`, and `previous` (a target row per query, any)
+/// bounds the search.
+/// \throws InvalidInput if `weight` is not positive and finite.
+[[nodiscard]] std::vector<Eigen::Index> nearest_in_joint_embedding(
+    const JointEmbedding& queries, const JointEmbedding& targets, double weight,
+    const PointIndex& index, const std::vector<Eigen::Index>& previous);
 
 struct Counterparts {
     Eigen::MatrixX3d points;  ///< per template vertex, its counterpart: a vertex of the target

@@ -205,7 +205,8 @@ MatchResult judged_readings(MatchResult first, const detail::Prepared& prepared,
         clock.name_from_now("");
         return first;
     }
-    const detail::ReadingJudge judge(bases, template_mesh, target);
+    const detail::ReadingJudge judge(bases, template_mesh, target,
+                                     options.signatures_reading.report_orientation);
     const detail::ReadingScore first_score = judge.score(first.deformed.V);
     const detail::ReadingScore reading_score = judge.score(reading.deformed.V);
     clock.end("judge");

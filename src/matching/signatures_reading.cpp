@@ -37,8 +37,11 @@ std::vector<Eigen::Index> nearest_corners(const std::vector<SurfacePoint>& point
 }  // namespace
 
 ReadingJudge::ReadingJudge(const FinestBases& bases, const TriangleMesh& template_mesh,
-                           const TriangleMesh& target)
+                           const TriangleMesh& target, bool orientation)
     : bases_(bases), target_(target) {
+    if (!orientation) {
+        return;
+    }
     try {
         orientation_.emplace(template_mesh, target);
     } catch (const SolverError&) {

@@ -31,9 +31,10 @@ namespace genflow::detail {
 /// that map keeps the surface's orientation (MapOrientation), which the match reports.
 class ReadingJudge {
 public:
-    /// Keeps `bases` and `target` by reference. The orientation's spectra are computed here.
+    /// Keeps `bases` and `target` by reference. With `orientation`, the orientation's spectra
+    /// are computed here.
     ReadingJudge(const FinestBases& bases, const TriangleMesh& template_mesh,
-                 const TriangleMesh& target);
+                 const TriangleMesh& target, bool orientation);
 
     /// The score of the map that puts each template vertex on the target's closest point to
     /// where `deformed` puts it (for the orientation, on that point's nearest corner).

@@ -50,7 +50,7 @@ TEST(BenchmarkCli, ShardsMatchTheSampleAndAResumedRunSummarizesIt) {
     write_benchmark(directory.path());
     const std::string common = "benchmark " + quoted(directory.path()) +
                                " --pairs 4 --subject-size 2 --candidates 2 --map-fits 0 "
-                               "--second-opinion-above inf --output-dir " +
+                               "--second-opinion-above inf --report-orientation --output-dir " +
                                quoted(directory / "out") + " --json";
     nlohmann::json shard_rows = nlohmann::json::array();
     for (const char* shard : {"0/2", "1/2"}) {

@@ -8,11 +8,13 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "genflow/exceptions.h"
 #include "genflow/matching/correspondence.h"
 #include "genflow/operators/laplacian_eigenbasis.h"
+#include "matching/functional_map.h"
 
 namespace genflow::detail {
 namespace {
@@ -177,6 +179,45 @@ TEST(Counterparts, RefuseBasesThatDoNotFitAndABadReach) {
                      InvalidInput)
             << reach;
     }
+}
+
+// The search near each query's position finds what a search of every target row finds
+// (nearest_rows() of the weighted rows), whether the positions weigh much (a few rows near
+// each query) or little (the bound takes in most rows), and from any previous rows.
+TEST(NearestInJointEmbedding, FindsWhatASearchOfEveryRowFinds) {
+    std::mt19937_64 random(7);
+    std::normal_distribution<double> normal;
+    const auto random_matrix = [&](Eigen::Index rows, Eigen::Index cols) {
+        return Eigen::MatrixXd(
+            Eigen::MatrixXd::NullaryExpr(rows, cols, [&] { return normal(random); }));
+    };
+    constexpr Eigen::Index kQueries = 300;
+    constexpr Eigen::Index kTargets = 500;
+    constexpr Eigen::Index kColumns = 12;
+    const Eigen::MatrixX3d query_places = random_matrix(kQueries, 3);
+    const Eigen::MatrixX3d target_places = random_matrix(kTargets, 3);
+    const JointEmbedding queries{random_matrix(kQueries, kColumns), query_places};
+    const JointEmbedding targets{random_matrix(kTargets, kColumns), target_places};
+    const PointIndex index(target_places);
+    std::uniform_int_distribution<Eigen::Index> any_target(0, kTargets - 1);
+    std::vector<Eigen::Index> previous(kQueries);
+    for (Eigen::Index& row : previous) {
+        row = any_target(random);
+    }
+    for (const double weight : {0.1, 1.0, 30.0}) {
+        Eigen::MatrixXd from(kQueries, kColumns + 3);
+        from << queries.functions, weight * query_places;
+        Eigen::MatrixXd to(kTargets, kColumns + 3);
+        to << targets.functions, weight * target_places;
+        const std::vector<Eigen::Index> everywhere = nearest_rows(from, to);
+        EXPECT_EQ(nearest_in_joint_embedding(queries, targets, weight, index, previous), everywhere)
+            << weight;
+        EXPECT_EQ(nearest_in_joint_embedding(queries, targets, weight, index, everywhere),
+                  everywhere)
+            << weight;
+    }
+    EXPECT_THROW((void)nearest_in_joint_embedding(queries, targets, 0, index, previous),
+                 InvalidInput);
 }
 
 }  // namespace

@@ -606,6 +606,7 @@ TEST(Match, SignaturesReadingKeepsTheReadingThatCommutesBetter) {
     EXPECT_FALSE(first.first_commutativity.has_value());
 
     options.signatures_reading.enabled = true;
+    options.signatures_reading.report_orientation = true;
     const MatchResult judged = match(pair.template_mesh, pair.target, options);
     ASSERT_TRUE(judged.first_commutativity.has_value());
     ASSERT_TRUE(judged.signatures_commutativity.has_value());

@@ -18,7 +18,7 @@ TEST(ReadingJudge, ScoresTheRightMapAndItsMirrorImage) {
     const test::PosedSpikedFigure figure;
     const std::optional<FinestBases> bases = finest_bases(figure.template_mesh, figure.target);
     ASSERT_TRUE(bases.has_value());
-    const ReadingJudge judge(*bases, figure.template_mesh, figure.target);
+    const ReadingJudge judge(*bases, figure.template_mesh, figure.target, true);
     const ReadingScore right = judge.score(figure.truth);
     const ReadingScore mirrored =
         judge.score(figure.truth(test::figure_mirror(figure.template_mesh), Eigen::all));
@@ -31,6 +31,21 @@ TEST(ReadingJudge, ScoresTheRightMapAndItsMirrorImage) {
     EXPECT_NEAR(mirrored.commutativity, right.commutativity, 1e-3 * right.commutativity);
     EXPECT_LT(*right.orientation_ratio, 1);
     EXPECT_GT(*mirrored.orientation_ratio, 1);
+}
+
+// Unasked, the judge leaves out the orientation (two eigen-solves of the whole meshes) and
+// scores the commutativity alone, the same as with it.
+TEST(ReadingJudge, ScoresTheCommutativityAloneUnlessAskedForTheOrientation) {
+    const test::PosedSpikedFigure figure;
+    const std::optional<FinestBases> bases = finest_bases(figure.template_mesh, figure.target);
+    ASSERT_TRUE(bases.has_value());
+    const ReadingScore with =
+        ReadingJudge(*bases, figure.template_mesh, figure.target, true).score(figure.truth);
+    const ReadingScore without =
+        ReadingJudge(*bases, figure.template_mesh, figure.target, false).score(figure.truth);
+    EXPECT_TRUE(with.orientation_ratio.has_value());
+    EXPECT_FALSE(without.orientation_ratio.has_value());
+    EXPECT_EQ(without.commutativity, with.commutativity);
 }
 
 }  // namespace

@@ -94,7 +94,9 @@ TEST(FaustR, BodyTheEigenfunctionsMirrorIsKeptFromTheSignaturesReading) {
     if (!from || !to) {
         GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no FAUST_r training split in it";
     }
-    const MatchResult result = match(from->mesh, to->mesh);
+    MatchOptions options;
+    options.signatures_reading.report_orientation = true;
+    const MatchResult result = match(from->mesh, to->mesh, options);
     const double error = benchmark_error(*from, *to, result);
     ASSERT_TRUE(result.first_commutativity.has_value());
     ASSERT_TRUE(result.signatures_commutativity.has_value());
