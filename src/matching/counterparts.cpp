@@ -6,10 +6,6 @@
 #include <string>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "genflow/exceptions.h"
 #include "genflow/matching/correspondence.h"
 #include "matching/functional_map.h"
