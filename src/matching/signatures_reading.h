@@ -27,8 +27,9 @@ namespace genflow::detail {
 [[nodiscard]] MatchOptions signatures_reading_options(const MatchOptions& options);
 
 /// The judge of the readings: the commutativity (laplacian_commutativity()) of the map each
-/// deformed template implies, in the finest template's and target's eigenbases, and whether
-/// that map keeps the surface's orientation (MapOrientation), which the match reports.
+/// deformed template implies, in the finest template's and target's eigenbases; where asked,
+/// also whether that map keeps the surface's orientation (MapOrientation), which the match
+/// reports and does not judge by.
 class ReadingJudge {
 public:
     /// Keeps `bases` and `target` by reference. With `orientation`, the orientation's spectra

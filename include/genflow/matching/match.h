@@ -161,8 +161,8 @@ struct MapFitOptions {
 struct SignaturesReadingOptions {
     bool enabled = true;
     /// Also report each reading's orientation_ratio() (MatchResult::first_orientation): a
-    /// diagnosis, not a rule, whose two 100-eigenpair solves of the whole meshes cost 0.4 s on
-    /// a 5,000-vertex pair and 9 s on a 28,000-vertex one.
+    /// diagnosis, not a rule, so off by default, as it costs two eigen-solves of the whole
+    /// meshes (docs/matching.md, "The signatures' reading").
     bool report_orientation = false;
 };
 
