@@ -23,6 +23,7 @@
 #include "commands.h"
 #include "genflow/evaluation/benchmark_pairs.h"
 #include "genflow/evaluation/geodesic_error.h"
+#include "genflow/evaluation/reference_landmarks.h"
 #include "genflow/evaluation/reference_symmetry.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
@@ -49,6 +50,7 @@ struct BenchmarkOptions {
     std::string shard;  // "i/N"; empty: every pair
     bool json = false;
     std::string method = "match";
+    int landmarks = 0;  // per pair, from the ground truth (reference_landmarks())
     MatchFlags flags;
 };
 
@@ -387,9 +389,14 @@ nlohmann::json row_of(const BenchmarkOptions& options, const Shape& from, const 
             return *row;
         }
     }
+    MatchOptions pair_options = match_options;
+    if (options.landmarks > 0) {
+        pair_options.landmarks.points = reference_landmarks(from.mesh, from.reference, to.mesh,
+                                                            to.reference, options.landmarks);
+    }
     nlohmann::json row;
     try {
-        row = run_pair(from, to, within, symmetry, options.method, match_options,
+        row = run_pair(from, to, within, symmetry, options.method, pair_options,
                        output_dir.empty() ? std::filesystem::path()
                                           : pair_file(output_dir, from, to, ".map.txt"));
     } catch (const SolverError& e) {
@@ -438,6 +445,7 @@ nlohmann::json summary_json(const BenchmarkOptions& options, std::size_t shapes,
             {"subject_size", options.subject_size},
             {"shard", options.shard},
             {"method", options.method},
+            {"landmarks", options.landmarks},
             {"geodesics", "shortest paths along the edges (Dijkstra)"},
             {"unit", "sqrt(area) of the target"},
             {"pck_step", kPckStep},
@@ -493,6 +501,12 @@ void run_benchmark(const BenchmarkOptions& options) {
         throw InvalidInput("--resume needs --output-dir (where the earlier results are)");
     }
     const std::vector<Shape> shapes = read_shapes(options.directory);
+    if (options.landmarks > 0 &&
+        static_cast<std::size_t>(options.landmarks) > shapes.front().reference.size()) {
+        throw InvalidInput("--landmarks: " + std::to_string(options.landmarks) +
+                           " asked, the shapes have " +
+                           std::to_string(shapes.front().reference.size()) + " reference points");
+    }
     const std::vector<ShapePair> pairs = sample_of(options, shapes.size());
     const ReferenceSymmetry symmetry = symmetry_of(shapes);
     const MatchOptions match_options = resolved(options.flags, false);
@@ -560,6 +574,11 @@ void register_benchmark_command(CLI::App& app) {
     command->add_option("--shard", options->shard,
                         "Only the pairs at positions i, i + N, ... of the sample (i/N), so that N "
                         "processes share it; a last run with --resume summarizes them all");
+    command
+        ->add_option("--landmarks", options->landmarks,
+                     "Give each pair's match this many landmarks from the ground truth: reference "
+                     "points spread over the template, as a user would click them")
+        ->check(CLI::NonNegativeNumber);
     command->add_flag("--json", options->json, "Print the summary as JSON instead of tables");
     command
         ->add_option("--method", options->method,

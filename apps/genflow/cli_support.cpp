@@ -102,7 +102,8 @@ nlohmann::json match_choices(const MatchResult& result) {
             {"signatures_commutativity", number_or_null(result.signatures_commutativity)},
             {"first_orientation", number_or_null(result.first_orientation)},
             {"signatures_orientation", number_or_null(result.signatures_orientation)},
-            {"counterparts_moved", number_or_null(result.counterparts_moved)}};
+            {"counterparts_moved", number_or_null(result.counterparts_moved)},
+            {"landmark_distance_over_diagonal", number_or_null(result.landmark_distance)}};
 }
 
 nlohmann::json stage_times_json(const MatchResult& result) {

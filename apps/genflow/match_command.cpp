@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/mesh_format.h"
+#include "genflow/io/read_landmarks.h"
 #include "genflow/io/read_part_model.h"
 #include "match_flags.h"
 #include "match_job.h"
@@ -31,6 +32,7 @@ struct MatchCommandOptions {
     std::string frames;
     std::string summary;
     std::string ground_truth;
+    std::string landmarks;
     MatchFlags flags;
     bool json = false;
     bool quiet = false;
@@ -100,6 +102,10 @@ void run_match(const MatchCommandOptions& options) {
     } else if (job.options.prior == MatchPrior::Articulated) {
         throw InvalidInput("match: --prior articulated needs --parts PARTS.json");
     }
+    if (!options.landmarks.empty()) {
+        job.options.landmarks.points =
+            read_landmarks(options.landmarks, template_mesh.mesh.V.rows(), target.mesh);
+    }
     job.progress_bar = !options.json && !options.quiet;
     const nlohmann::json summary = run_match_job(std::move(job));
     if (!options.json) {
@@ -167,6 +173,9 @@ void register_match_command(CLI::App& app) {
                         "The pose of the part file the template is in (its joint centres "
                         "moved there; default: the pose the template's file name, or its last "
                         "'_'-separated word, names, else the rest pose)");
+    command->add_option("--landmarks", options->landmarks,
+                        "Known correspondences, one per line: 'i x y z' (template vertex i goes "
+                        "to the point) or 'i j' (to target vertex j), 0-based, '#' comments");
     add_prior_flag(*command, options->flags);
     add_match_flags(*command, options->flags);
     command->add_option("--correspondence", options->correspondence,

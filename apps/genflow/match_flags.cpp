@@ -153,6 +153,12 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
     command.add_flag("--report-orientation", flags.report_orientation,
                      "Report whether each reading's map keeps the surface's orientation (the "
                      "ratio above 1 where it reverses it; two eigen-solves of the whole meshes)");
+    command
+        .add_option("--landmark-weight", flags.match.landmarks.weight,
+                    "Weight of the landmarks beside the distance (1: landmarks a diagonal off "
+                    "weigh as surfaces a diagonal apart)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     command.add_flag("--no-counterparts", flags.no_counterparts,
                      "Give each template vertex as its counterpart (--correspondence) the "
                      "target's closest point to where the match put it, not the point near it "

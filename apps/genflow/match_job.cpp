@@ -73,6 +73,7 @@ nlohmann::json run_match_job(MatchJob job) {
         {"mean_distance_over_diagonal", distances.mean / diagonal},
     };
     summary.update(match_choices(result));
+    summary["landmarks"] = job.options.landmarks.points.size();
     if (job.ground_truth) {
         // Over the ground truth's own diagonal (the target's surface, sampled as the template).
         const CorrespondenceError error = correspondence_error(

@@ -5,6 +5,7 @@
 
 #include <charconv>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -93,6 +94,10 @@ private:
     std::string_view text_;
     std::size_t pos_ = 0;
 };
+
+/// The whole of a text file.
+/// \throws IoError "<path>: cannot open" if it cannot be read.
+[[nodiscard]] std::string read_text(const std::filesystem::path& path);
 
 /// Splits a line into whitespace-separated tokens, reusing the storage of `tokens` (the readers
 /// call this once per line, so it must not allocate every time).

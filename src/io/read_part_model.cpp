@@ -2,7 +2,6 @@
 #include "genflow/io/read_part_model.h"
 
 #include <charconv>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -11,6 +10,7 @@
 #include <vector>
 
 #include "genflow/exceptions.h"
+#include "io/parse_context.h"
 
 namespace genflow {
 
@@ -20,16 +20,6 @@ using nlohmann::json;
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
     throw IoError(file.string() + ": " + problem);
-}
-
-std::string read_text(const std::filesystem::path& file) {
-    std::ifstream stream(file, std::ios::binary);
-    if (!stream) {
-        fail(file, "cannot open");
-    }
-    std::ostringstream text;
-    text << stream.rdbuf();
-    return text.str();
 }
 
 Eigen::Vector3d point(const std::filesystem::path& file, const json& value,
@@ -124,7 +114,7 @@ void move_to_pose(const std::filesystem::path& file, const json& document, const
 
 // The non-empty, non-comment lines of a text file, split on whitespace.
 std::vector<std::vector<std::string>> rows(const std::filesystem::path& file) {
-    std::istringstream text(read_text(file));
+    std::istringstream text(detail::read_text(file));
     std::vector<std::vector<std::string>> result;
     for (std::string line; std::getline(text, line);) {
         const auto first = line.find_first_not_of(" \t\r");
@@ -305,7 +295,7 @@ Eigen::MatrixXd read_weights(const std::filesystem::path& file, Eigen::Index ver
 PartModel read_part_model(const PartFiles& files, Eigen::Index vertices) {
     json document;
     try {
-        document = json::parse(read_text(files.tree));
+        document = json::parse(detail::read_text(files.tree));
     } catch (const json::exception& e) {
         fail(files.tree, std::string("not valid JSON (") + e.what() + ")");
     }

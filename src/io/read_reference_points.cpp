@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "genflow/io/read_reference_points.h"
 
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "genflow/exceptions.h"
@@ -12,13 +10,7 @@ namespace genflow {
 
 std::vector<Eigen::Index> read_reference_points(const std::filesystem::path& path,
                                                 Eigen::Index vertex_count) {
-    std::ifstream stream(path, std::ios::binary);
-    if (!stream) {
-        throw IoError(path.string() + ": cannot open");
-    }
-    std::ostringstream buffer;
-    buffer << stream.rdbuf();
-    const std::string text = buffer.str();
+    const std::string text = detail::read_text(path);
     detail::TextScanner scanner(text);
     std::vector<std::string_view> tokens;
     std::vector<Eigen::Index> vertices;

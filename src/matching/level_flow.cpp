@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "genflow/energies/edge_length_energy.h"
+#include "genflow/energies/landmark_energy.h"
 #include "genflow/energies/weighted_sum_energy.h"
 #include "genflow/exceptions.h"
 #include "genflow/flows/gradient_descent.h"
@@ -39,6 +40,28 @@ std::unique_ptr<Metric> make_metric(const MatchOptions& options, MatchPrior prio
             return std::make_unique<QuasiIsometricMetric>(options.isometric);
     }
     throw InvalidInput("match: unknown prior");
+}
+
+// The landmarks on level `l`'s template: each on its own vertex where the level keeps it, else
+// on the level's vertex nearest to it at rest (a coarse level keeps a subset of the vertices).
+std::shared_ptr<const LandmarkEnergy> level_landmarks(const std::vector<Level>& pyramid, int l,
+                                                      const std::vector<Landmark>& landmarks,
+                                                      double diagonal) {
+    const Level& level = pyramid[static_cast<std::size_t>(l)];
+    const Eigen::MatrixX3d& finest_rest = pyramid.front().template_mesh.V;
+    std::vector<Eigen::Index> vertices;
+    Eigen::MatrixX3d points(static_cast<Eigen::Index>(landmarks.size()), 3);
+    for (std::size_t k = 0; k < landmarks.size(); ++k) {
+        Eigen::Index nearest = 0;
+        (level.template_mesh.V.rowwise() - finest_rest.row(landmarks[k].vertex))
+            .rowwise()
+            .squaredNorm()
+            .minCoeff(&nearest);
+        vertices.push_back(nearest);
+        points.row(static_cast<Eigen::Index>(k)) = landmarks[k].target_point.transpose();
+    }
+    return std::make_shared<const LandmarkEnergy>(level.template_mesh.V.rows(), std::move(vertices),
+                                                  std::move(points), diagonal);
 }
 
 }  // namespace
@@ -90,12 +113,19 @@ FlowResult LevelFlows::run_flow(int l, const TriangleMesh& moved, int iterations
     if (stretch_weight > 0) {
         stretch = std::make_shared<EdgeLengthEnergy>(rest);
     }
+    std::shared_ptr<const LandmarkEnergy> landmarks;
+    if (!options_.landmarks.points.empty() && options_.landmarks.weight > 0) {
+        landmarks = level_landmarks(pyramid_, l, options_.landmarks.points, diagonal_);
+    }
     const auto energy_with_epsilon = [&](double epsilon_factor) {
         std::vector<WeightedSumEnergy::Term> terms{
             {1.0, std::make_shared<const PseudoHausdorffEnergy>(
                       distance_to_target(level, epsilon_factor, descriptors))}};
         if (stretch) {
             terms.push_back({stretch_weight * diagonal_, stretch});
+        }
+        if (landmarks) {
+            terms.push_back({options_.landmarks.weight * diagonal_, landmarks});
         }
         return WeightedSumEnergy(std::move(terms));
     };

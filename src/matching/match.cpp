@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include "genflow/exceptions.h"
@@ -77,6 +78,38 @@ MatchOptions paper_match_options() {
 
 namespace {
 
+void check_landmarks(const LandmarkOptions& landmarks, Eigen::Index template_vertices) {
+    if (!detail::finite_at_least(landmarks.weight, 0)) {
+        throw InvalidInput("match: landmarks.weight must be finite and non-negative");
+    }
+    for (std::size_t k = 0; k < landmarks.points.size(); ++k) {
+        const Landmark& landmark = landmarks.points[k];
+        if (landmark.vertex < 0 || landmark.vertex >= template_vertices ||
+            !landmark.target_point.allFinite()) {
+            throw InvalidInput("match: landmark " + std::to_string(k) + ": template vertex " +
+                               std::to_string(landmark.vertex) + " outside 0.." +
+                               std::to_string(template_vertices - 1) + " or a non-finite point");
+        }
+    }
+}
+
+// The landmarks on the repaired template's vertices.
+std::vector<Landmark> repaired_landmarks(const std::vector<Landmark>& landmarks,
+                                         const RepairedSurface& repaired) {
+    std::vector<Landmark> moved = landmarks;
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+        const Eigen::Index vertex =
+            repaired.repaired_vertex[static_cast<std::size_t>(moved[k].vertex)];
+        if (vertex < 0) {
+            throw InvalidInput("match: landmark " + std::to_string(k) + ": template vertex " +
+                               std::to_string(moved[k].vertex) +
+                               " is not on the surface matched (a component left out in repair)");
+        }
+        moved[k].vertex = vertex;
+    }
+    return moved;
+}
+
 void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
                   const MatchOptions& options) {
     for (const auto& [mesh, name] : {std::pair{&template_mesh, "template"}, {&target, "target"}}) {
@@ -123,6 +156,7 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
             "articulated_finest_global in (0, 1], counterparts.reach > 0, "
             "quasi_newton_memory >= 0 (0 with implicit steps)");
     }
+    check_landmarks(options.landmarks, template_mesh.V.rows());
     if (options.prior == MatchPrior::Articulated) {
         if (!options.parts) {
             throw InvalidInput("match: the articulated prior needs a part model");
@@ -237,6 +271,12 @@ void find_counterparts(MatchResult& result, const TriangleMesh& target,
     result.counterparts = detail::closest_counterparts(result.deformed.V, target);
 }
 
+// MatchResult::landmark_distance.
+double landmark_distance(const std::vector<Landmark>& landmarks, const Eigen::MatrixX3d& deformed,
+                         double diagonal) {
+    return std::sqrt(landmark_mean_squared_distance(landmarks, deformed)) / diagonal;
+}
+
 // match() on surfaces that repair_surface() leaves as they are: the pipeline's stages, each
 // timed by `clock`.
 MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh& target,
@@ -275,6 +315,10 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // Each template vertex's counterpart on the target.
     find_counterparts(result, target, bases && !cancelled ? &*bases : nullptr, options);
     clock.end("counterparts");
+    if (!options.landmarks.points.empty()) {
+        result.landmark_distance =
+            landmark_distance(options.landmarks.points, result.deformed.V, diagonal);
+    }
     result.levels.front().seconds += clock.seconds("coarsest analysis");
     result.seconds = detail::seconds_since(start);
     return result;
@@ -298,6 +342,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     if (options.parts) {
         on_repaired.parts = restrict_to(*options.parts, repaired_template.source_vertex);
     }
+    on_repaired.landmarks.points = repaired_landmarks(options.landmarks.points, repaired_template);
     MatchResult result =
         match_surfaces(repaired_template.mesh, repaired_target.mesh, on_repaired, clock);
     result.deformed =
@@ -308,6 +353,10 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     if (result.other_reading) {
         result.other_reading =
             detail::carried_back(repaired_template, template_mesh.V, *result.other_reading);
+    }
+    if (result.landmark_distance) {  // the template's own vertices, as carried back
+        result.landmark_distance = landmark_distance(options.landmarks.points, result.deformed.V,
+                                                     bounding_box_diagonal(target));
     }
     result.template_repairs = repaired_template.summary();
     result.target_repairs = repaired_target.summary();

@@ -15,26 +15,43 @@ namespace genflow::detail {
 
 namespace {
 
+// With landmarks, the starts ordered by how near they put the landmarks to their points, led
+// by the landmarks' own similarity: a start that contradicts them is a wrong one, whatever d_H
+// says of it (a body turned about fits d_H about as well).
+void steer_by_landmarks(std::vector<Similarity>& starts, const std::vector<Landmark>& landmarks,
+                        const Eigen::MatrixX3d& template_vertices) {
+    const auto residual = [&](const Similarity& start) {
+        return landmark_mean_squared_distance(landmarks, start.apply(template_vertices));
+    };
+    std::stable_sort(starts.begin(), starts.end(), [&](const Similarity& a, const Similarity& b) {
+        return residual(a) < residual(b);
+    });
+    if (const std::optional<Similarity> fit = landmark_similarity(landmarks, template_vertices)) {
+        starts.insert(starts.begin(), *fit);
+    }
+}
+
 // The rigid starts, best first: the MatchOptions::starts.candidates best distinct rigid
-// fits, or the identity alone without alignment.
+// fits (with landmarks, those that place them best), or the identity alone without alignment.
 std::vector<Similarity> rigid_starts(const TriangleMesh& template_mesh, const TriangleMesh& target,
                                      const MatchOptions& options) {
-    std::vector<Similarity> starts{Similarity{}};
-    if (options.starts.enabled) {
-        RigidAlignmentOptions alignment = options.starts.alignment;
-        alignment.best_starts = std::max(alignment.best_starts, options.starts.candidates);
-        if (options.starts.candidates > 1) {
-            alignment.refine_iterations = 0;  // the flows below decide; refining merges starts
-        }
-        starts.clear();
-        for (const RigidAlignment& candidate :
-             rigid_alignment_candidates(template_mesh, target, alignment)) {
-            starts.push_back(candidate.transform);
-            if (static_cast<int>(starts.size()) == options.starts.candidates) {
-                break;
-            }
-        }
+    if (!options.starts.enabled) {
+        return {Similarity{}};
     }
+    RigidAlignmentOptions alignment = options.starts.alignment;
+    alignment.best_starts = std::max(alignment.best_starts, options.starts.candidates);
+    if (options.starts.candidates > 1) {
+        alignment.refine_iterations = 0;  // the flows below decide; refining merges starts
+    }
+    std::vector<Similarity> starts;
+    for (const RigidAlignment& candidate :
+         rigid_alignment_candidates(template_mesh, target, alignment)) {
+        starts.push_back(candidate.transform);
+    }
+    if (!options.landmarks.points.empty()) {
+        steer_by_landmarks(starts, options.landmarks.points, template_mesh.V);
+    }
+    starts.resize(std::min(starts.size(), static_cast<std::size_t>(options.starts.candidates)));
     return starts;
 }
 

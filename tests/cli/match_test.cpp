@@ -214,6 +214,48 @@ TEST(MatchCli, MatchesANonManifoldTemplateAsRepaired) {
         << as_target.err;
 }
 
+// Landmarks from a file ('i x y z' and 'i j' lines) hold their vertices and are reported; a
+// bad line is refused with the file and the line named, before anything is matched or written.
+TEST(MatchCli, TakesLandmarksAndRefusesABadFileWritingNothing) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh limb = make_limb(3);
+    Similarity turn;
+    turn.rotation = Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const TriangleMesh target{turn.apply(limb.V), limb.F};
+    write_mesh(directory / "template.ply", limb);
+    write_mesh(directory / "target.ply", target);
+    {
+        std::ofstream marks(directory / "marks.txt");
+        marks << "# template vertex, then its place\n";
+        for (const Eigen::Index v : {Eigen::Index{0}, limb.V.rows() / 3, 2 * limb.V.rows() / 3}) {
+            marks << v << ' ' << target.V(v, 0) << ' ' << target.V(v, 1) << ' ' << target.V(v, 2)
+                  << '\n';
+        }
+        marks << limb.V.rows() - 1 << ' ' << limb.V.rows() - 1 << "  # a target vertex\n";
+        std::ofstream(directory / "bad.txt") << "0 0\n1 2 x 3\n";
+    }
+    const auto out = directory / "out.ply";
+    const std::string command = "match " + quoted(directory / "template.ply") + " " +
+                                quoted(directory / "target.ply") + " -o " + quoted(out) +
+                                " --preset paper --levels 2 --json --landmarks ";
+    const auto result = run_genflow(command + quoted(directory / "marks.txt"));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto summary = nlohmann::json::parse(result.out);
+    EXPECT_EQ(summary["landmarks"], 4);
+    EXPECT_LT(summary["landmark_distance_over_diagonal"].get<double>(), 0.005);
+    std::filesystem::remove(out);
+    const auto bad = run_genflow(command + quoted(directory / "bad.txt"));
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("bad.txt: line 2: expected a finite coordinate, got 'x'"),
+              std::string::npos)
+        << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    const auto negative =
+        run_genflow(command + quoted(directory / "marks.txt") + " --landmark-weight -1");
+    EXPECT_EQ(negative.exit_code, 2);
+    EXPECT_NE(negative.err.find("--landmark-weight"), std::string::npos) << negative.err;
+}
+
 TEST(MatchCli, RefusesBadInputAndWritesNothing) {
     const test::TemporaryDirectory directory;
     write_mesh(directory / "limb.ply", make_limb(2));

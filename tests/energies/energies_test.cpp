@@ -7,6 +7,7 @@
 
 #include "genflow/energies/edge_length_energy.h"
 #include "genflow/energies/enclosed_volume_energy.h"
+#include "genflow/energies/landmark_energy.h"
 #include "genflow/energies/surface_area_energy.h"
 #include "genflow/energies/weighted_sum_energy.h"
 #include "genflow/exceptions.h"
@@ -128,6 +129,61 @@ TEST(EdgeLengthEnergy, RefusesMismatchedAndDegenerateMeshes) {
     broken = rest;
     broken.F(0, 0) = static_cast<int>(rest.V.rows());
     EXPECT_THROW(EdgeLengthEnergy{broken}, InvalidInput);
+}
+
+TEST(LandmarkEnergy, IsTheMeanSquaredDistanceInUnitsOfTheLength) {
+    const TriangleMesh mesh = test::noisy_icosphere(1, 0.2);
+    Eigen::MatrixX3d points(3, 3);
+    points.row(0) = mesh.V.row(4) + Eigen::RowVector3d(0.3, 0, 0);
+    points.row(1) = mesh.V.row(7) + Eigen::RowVector3d(0, 0, -0.4);
+    points.row(2) = mesh.V.row(4);  // a second landmark on vertex 4
+    const LandmarkEnergy energy(mesh.V.rows(), {4, 7, 4}, points, 2.0);
+    // (0.3² + 0.4² + 0) / (3 · 2²): vertex 4 lies 0.3 from one of its points and on the other.
+    EXPECT_NEAR(energy.value(mesh), (0.09 + 0.16) / 12, 1e-15);
+    TriangleMesh moved = mesh;
+    moved.V.row(7) = points.row(1);
+    moved.V.row(4) = 0.5 * (points.row(0) + points.row(2));  // the two points' midpoint
+    EXPECT_NEAR(energy.value(moved), (0.0225 + 0.0225) / 12, 1e-15);
+    expect_differential_matches_finite_differences(energy, mesh);
+    // At the midpoint the two landmarks of vertex 4 pull it both ways alike.
+    EXPECT_LT(energy.differential(moved).cwiseAbs().maxCoeff(), 1e-15);
+}
+
+TEST(LandmarkEnergy, LinearizationIsExactAndPositiveSemiDefinite) {
+    const TriangleMesh mesh = test::noisy_torus(12, 6, 0.2);
+    const Eigen::MatrixX3d points = test::random_matrix(3, 3, 5);
+    const LandmarkEnergy energy(mesh.V.rows(), {0, 9, 0}, points, 0.7);
+    const auto linearization = energy.linearize(mesh);
+    ASSERT_TRUE(linearization);
+    // Exact at any positions, not just the ones it was taken at (E is quadratic).
+    const TriangleMesh other = test::noisy_torus(12, 6, 0.4, 3);
+    EXPECT_LT(test::relative_error(linearization->A * other.V + linearization->B,
+                                   energy.differential(other)),
+              1e-12);
+    // Diagonal, positive on the landmarks' vertices alone: two landmarks on vertex 0, one on 9.
+    EXPECT_EQ(linearization->A.nonZeros(), 2);
+    const Eigen::MatrixXd A(linearization->A);
+    EXPECT_GT(A(9, 9), 0);
+    EXPECT_NEAR(A(0, 0), 2 * A(9, 9), 1e-15);
+    EXPECT_EQ(A.diagonal().sum(), A(0, 0) + A(9, 9));
+}
+
+TEST(LandmarkEnergy, RefusesWhatItCannotUse) {
+    const TriangleMesh mesh = test::noisy_icosphere(1);
+    const Eigen::MatrixX3d one = Eigen::MatrixX3d::Zero(1, 3);
+    EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {}, Eigen::MatrixX3d(0, 3), 1), InvalidInput);
+    EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {0, 1}, one, 1), InvalidInput);
+    EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {mesh.V.rows()}, one, 1), InvalidInput);
+    EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {-1}, one, 1), InvalidInput);
+    EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {0}, one, 0), InvalidInput);
+    EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {0}, one, NAN), InvalidInput);
+    Eigen::MatrixX3d bad = one;
+    bad(0, 1) = INFINITY;
+    EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {0}, bad, 1), InvalidInput);
+    const LandmarkEnergy energy(mesh.V.rows(), {0}, one, 1);
+    EXPECT_THROW((void)energy.value(test::noisy_icosphere(2)), InvalidInput);
+    EXPECT_THROW((void)energy.differential(test::noisy_icosphere(2)), InvalidInput);
+    EXPECT_THROW((void)energy.linearize(test::noisy_icosphere(2)), InvalidInput);
 }
 
 }  // namespace

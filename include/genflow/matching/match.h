@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "genflow/flows/flow.h"
+#include "genflow/matching/landmarks.h"
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh.h"
 #include "genflow/metrics/quasi_isometric_metric.h"
@@ -220,6 +221,8 @@ struct MatchOptions {
     MapFitOptions map_fit;
     SignaturesReadingOptions signatures_reading;
     CounterpartOptions counterparts;
+    /// Template vertices whose places on the target the user knows (none by default).
+    LandmarkOptions landmarks;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
     /// The template's parts (required by the articulated prior; joint centres in the template's own
@@ -254,7 +257,9 @@ struct MatchLevel {
     /// coarsest level one plain and two per refining guidance).
     int iterations = 0;
     FlowStatus status = FlowStatus::MaxSteps;
-    double energy_start = 0;  ///< d_H at the start of the level's flow
+    /// d_H at the start and the end of the level's flow (with the landmarks' term, where the
+    /// match has landmarks: the energy the flow lowered).
+    double energy_start = 0;
     double energy_end = 0;
     double seconds = 0;  ///< pyramid, transfer and flow of this level
 };
@@ -280,7 +285,10 @@ struct MatchResult {
     std::optional<Eigen::Index> counterparts_moved;
     Similarity initial_alignment;    ///< the rigid start (identity without `align`)
     std::vector<MatchLevel> levels;  ///< coarsest first
-    double hausdorff_energy = 0;     ///< final d_H on the finest level
+    double hausdorff_energy = 0;     ///< final d_H on the finest level (as MatchLevel's)
+    /// The landmarks' root-mean-square distance from their points at the end, over the target's
+    /// diagonal; nothing without landmarks.
+    std::optional<double> landmark_distance;
     /// The stretch weight of the kept last guided round
     /// (MatchOptions::guided.stiffness_candidates); 0 when no guided round had the stretching
     /// energy.

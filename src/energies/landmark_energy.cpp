@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+#include "genflow/energies/landmark_energy.h"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "genflow/exceptions.h"
+
+namespace genflow {
+
+LandmarkEnergy::LandmarkEnergy(Eigen::Index vertex_count, std::vector<Eigen::Index> vertices,
+                               Eigen::MatrixX3d points, double length)
+    : vertex_count_(vertex_count), vertices_(std::move(vertices)), points_(std::move(points)) {
+    if (vertices_.empty() || static_cast<Eigen::Index>(vertices_.size()) != points_.rows()) {
+        throw InvalidInput("LandmarkEnergy: need one point per landmark, and a landmark");
+    }
+    for (const Eigen::Index v : vertices_) {
+        if (v < 0 || v >= vertex_count_) {
+            throw InvalidInput("LandmarkEnergy: vertex " + std::to_string(v) + " outside 0.." +
+                               std::to_string(vertex_count_ - 1));
+        }
+    }
+    if (!points_.allFinite() || !std::isfinite(length) || !(length > 0)) {
+        throw InvalidInput("LandmarkEnergy: points must be finite and the length positive");
+    }
+    normalization_ = 1 / (static_cast<double>(vertices_.size()) * length * length);
+}
+
+void LandmarkEnergy::check(const TriangleMesh& mesh) const {
+    if (mesh.V.rows() != vertex_count_) {
+        throw InvalidInput("LandmarkEnergy: the mesh has " + std::to_string(mesh.V.rows()) +
+                           " vertices, the landmarks' " + std::to_string(vertex_count_));
+    }
+}
+
+double LandmarkEnergy::value(const TriangleMesh& mesh) const {
+    check(mesh);
+    double sum = 0;
+    for (std::size_t k = 0; k < vertices_.size(); ++k) {
+        sum += (mesh.V.row(vertices_[k]) - points_.row(static_cast<Eigen::Index>(k))).squaredNorm();
+    }
+    return normalization_ * sum;
+}
+
+VertexField LandmarkEnergy::differential(const TriangleMesh& mesh) const {
+    check(mesh);
+    VertexField differential = VertexField::Zero(mesh.V.rows(), 3);
+    for (std::size_t k = 0; k < vertices_.size(); ++k) {
+        differential.row(vertices_[k]) +=
+            2 * normalization_ *
+            (mesh.V.row(vertices_[k]) - points_.row(static_cast<Eigen::Index>(k)));
+    }
+    return differential;
+}
+
+std::optional<Linearization> LandmarkEnergy::linearize(const TriangleMesh& mesh) const {
+    check(mesh);
+    Linearization linear{Eigen::SparseMatrix<double>(vertex_count_, vertex_count_),
+                         VertexField::Zero(vertex_count_, 3)};
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(vertices_.size());
+    for (std::size_t k = 0; k < vertices_.size(); ++k) {
+        triplets.emplace_back(vertices_[k], vertices_[k], 2 * normalization_);
+        linear.B.row(vertices_[k]) -=
+            2 * normalization_ * points_.row(static_cast<Eigen::Index>(k));
+    }
+    linear.A.setFromTriplets(triplets.begin(), triplets.end());  // duplicates are summed
+    return linear;
+}
+
+}  // namespace genflow
