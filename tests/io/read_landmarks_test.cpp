@@ -29,7 +29,7 @@ TEST(ReadLandmarks, ReadsPointsAndTargetVerticesWithComments) {
 }
 
 // The message names the file and the line, and says what is wrong.
-void expect_refused(const std::string& text, const std::string& says) {
+void expect_landmarks_refused(const std::string& text, const std::string& says) {
     const test::TemporaryDirectory directory;
     test::write_bytes(directory / "bad.txt", text);
     const TriangleMesh target = test::noisy_icosphere(0);  // 12 vertices
@@ -44,15 +44,15 @@ void expect_refused(const std::string& text, const std::string& says) {
 }
 
 TEST(ReadLandmarks, RefusesBadLinesNamingFileAndLine) {
-    expect_refused("1 2\n10 2\n", "line 2: template vertex index 10 outside 0..9");
-    expect_refused("-1 2\n", "line 1: template vertex index -1 outside 0..9");
-    expect_refused("1 12\n", "line 1: target vertex index 12 outside 0..11");
-    expect_refused("1 2 3\n", "line 1: expected 'i x y z'");
-    expect_refused("1 2 3 4 5\n", "line 1: expected 'i x y z'");
-    expect_refused("1.5 2\n", "line 1: expected a template vertex index, got '1.5'");
-    expect_refused("# a\n1 2 nan 4\n", "line 2: expected a finite coordinate, got 'nan'");
-    expect_refused("1 x 3 4\n", "line 1: expected a finite coordinate, got 'x'");
-    expect_refused("# nothing\n\n", "no landmark");
+    expect_landmarks_refused("1 2\n10 2\n", "line 2: template vertex index 10 outside 0..9");
+    expect_landmarks_refused("-1 2\n", "line 1: template vertex index -1 outside 0..9");
+    expect_landmarks_refused("1 12\n", "line 1: target vertex index 12 outside 0..11");
+    expect_landmarks_refused("1 2 3\n", "line 1: expected 'i x y z'");
+    expect_landmarks_refused("1 2 3 4 5\n", "line 1: expected 'i x y z'");
+    expect_landmarks_refused("1.5 2\n", "line 1: expected a template vertex index, got '1.5'");
+    expect_landmarks_refused("# a\n1 2 nan 4\n", "line 2: expected a finite coordinate, got 'nan'");
+    expect_landmarks_refused("1 x 3 4\n", "line 1: expected a finite coordinate, got 'x'");
+    expect_landmarks_refused("# nothing\n\n", "no landmark");
     EXPECT_THROW((void)read_landmarks("/nonexistent/x.txt", 10, test::noisy_icosphere(0)), IoError);
 }
 

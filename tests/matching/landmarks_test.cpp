@@ -18,7 +18,8 @@
 namespace genflow {
 namespace {
 
-std::vector<Landmark> landmarks_of(const Eigen::MatrixX3d& to, std::vector<Eigen::Index> vertices) {
+std::vector<Landmark> landmarks_at_vertices(const Eigen::MatrixX3d& to,
+                                            std::vector<Eigen::Index> vertices) {
     std::vector<Landmark> landmarks;
     for (const Eigen::Index v : vertices) {
         landmarks.push_back({v, to.row(v).transpose()});
@@ -34,19 +35,19 @@ TEST(LandmarkSimilarity, RecoversASimilarityFromThreePointsAndNeedsThem) {
     motion.scale = 2.5;
     const Eigen::MatrixX3d moved = motion.apply(mesh.V);
     const std::optional<Similarity> fit =
-        landmark_similarity(landmarks_of(moved, {0, 5, 17}), mesh.V);
+        landmark_similarity(landmarks_at_vertices(moved, {0, 5, 17}), mesh.V);
     ASSERT_TRUE(fit);
     EXPECT_NEAR(fit->scale, 2.5, 1e-12);
     EXPECT_LT((fit->rotation - motion.rotation).norm(), 1e-12);
     EXPECT_LT((fit->translation - motion.translation).norm(), 1e-12);
-    EXPECT_NEAR(
-        landmark_mean_squared_distance(landmarks_of(moved, {0, 5, 17, 30}), fit->apply(mesh.V)), 0,
-        1e-20);
+    EXPECT_NEAR(landmark_mean_squared_distance(landmarks_at_vertices(moved, {0, 5, 17, 30}),
+                                               fit->apply(mesh.V)),
+                0, 1e-20);
     // Two points, or three on a line, leave a rotation about the line free.
-    EXPECT_FALSE(landmark_similarity(landmarks_of(moved, {0, 5}), mesh.V));
+    EXPECT_FALSE(landmark_similarity(landmarks_at_vertices(moved, {0, 5}), mesh.V));
     Eigen::MatrixX3d line = mesh.V;
     line.row(2) = 0.3 * line.row(0) + 0.7 * line.row(1);
-    EXPECT_FALSE(landmark_similarity(landmarks_of(line, {0, 1, 2}), line));
+    EXPECT_FALSE(landmark_similarity(landmarks_at_vertices(line, {0, 1, 2}), line));
 }
 
 TEST(ReferenceLandmarks, SpreadOverTheTemplateAndPairTheReferencePoints) {
@@ -95,7 +96,7 @@ TEST(Match, LandmarksSteerAMatchTheRigidStartsMiss) {
 }
 
 // The mean distance of `deformed` to `truth`, over the diagonal of `truth`.
-double mean_error(const Eigen::MatrixX3d& deformed, const Eigen::MatrixX3d& truth) {
+double mean_error_over_diagonal(const Eigen::MatrixX3d& deformed, const Eigen::MatrixX3d& truth) {
     return (deformed - truth).rowwise().norm().mean() /
            (truth.colwise().maxCoeff() - truth.colwise().minCoeff()).norm();
 }
@@ -113,7 +114,7 @@ TEST(Match, LandmarksHoldTheirVerticesOnEveryLevel) {
     options.levels = 2;
     options.coarse_vertices = 100;
     const MatchResult without = match(limb, target, options);
-    EXPECT_GT(mean_error(without.deformed.V, target.V), 0.1);
+    EXPECT_GT(mean_error_over_diagonal(without.deformed.V, target.V), 0.1);
 
     std::vector<Eigen::Index> every(static_cast<std::size_t>(limb.V.rows()));
     std::iota(every.begin(), every.end(), 0);
@@ -124,7 +125,7 @@ TEST(Match, LandmarksHoldTheirVerticesOnEveryLevel) {
     EXPECT_LT(*with.landmark_distance, 0.005);  // 0.001
     // 0.35 → 0.08: what is left is the surface sliding along itself between four points, which
     // this preset's flow of d_H alone does not see.
-    EXPECT_LT(mean_error(with.deformed.V, target.V), 0.1);
+    EXPECT_LT(mean_error_over_diagonal(with.deformed.V, target.V), 0.1);
 }
 
 TEST(Match, RefusesLandmarksItCannotPlace) {
