@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "genflow/exceptions.h"
+#include "operators/triangle.h"
 
 namespace genflow {
 
@@ -21,7 +22,7 @@ LandmarkEnergy::LandmarkEnergy(Eigen::Index vertex_count, std::vector<Eigen::Ind
                                std::to_string(vertex_count_ - 1));
         }
     }
-    if (!points_.allFinite() || !std::isfinite(length) || !(length > 0)) {
+    if (!detail::all_finite(points_) || !std::isfinite(length) || !(length > 0)) {
         throw InvalidInput("LandmarkEnergy: points must be finite and the length positive");
     }
     normalization_ = 1 / (static_cast<double>(vertices_.size()) * length * length);

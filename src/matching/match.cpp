@@ -85,7 +85,7 @@ void check_landmarks(const LandmarkOptions& landmarks, Eigen::Index template_ver
     for (std::size_t k = 0; k < landmarks.points.size(); ++k) {
         const Landmark& landmark = landmarks.points[k];
         if (landmark.vertex < 0 || landmark.vertex >= template_vertices ||
-            !landmark.target_point.allFinite()) {
+            !detail::all_finite(landmark.target_point)) {
             throw InvalidInput("match: landmark " + std::to_string(k) + ": template vertex " +
                                std::to_string(landmark.vertex) + " outside 0.." +
                                std::to_string(template_vertices - 1) + " or a non-finite point");
