@@ -271,10 +271,15 @@ void find_counterparts(MatchResult& result, const TriangleMesh& target,
     result.counterparts = detail::closest_counterparts(result.deformed.V, target);
 }
 
-// MatchResult::landmark_distance.
-double landmark_distance(const std::vector<Landmark>& landmarks, const Eigen::MatrixX3d& deformed,
-                         double diagonal) {
-    return std::sqrt(landmark_mean_squared_distance(landmarks, deformed)) / diagonal;
+// MatchResult::landmark_distance of `result`'s template as `match()` returns it (in the
+// input's vertices), where there are landmarks.
+void report_landmarks(MatchResult& result, const LandmarkOptions& landmarks,
+                      const TriangleMesh& target) {
+    if (!landmarks.points.empty()) {
+        result.landmark_distance =
+            std::sqrt(landmark_mean_squared_distance(landmarks.points, result.deformed.V)) /
+            bounding_box_diagonal(target);
+    }
 }
 
 // match() on surfaces that repair_surface() leaves as they are: the pipeline's stages, each
@@ -315,10 +320,6 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // Each template vertex's counterpart on the target.
     find_counterparts(result, target, bases && !cancelled ? &*bases : nullptr, options);
     clock.end("counterparts");
-    if (!options.landmarks.points.empty()) {
-        result.landmark_distance =
-            landmark_distance(options.landmarks.points, result.deformed.V, diagonal);
-    }
     result.levels.front().seconds += clock.seconds("coarsest analysis");
     result.seconds = detail::seconds_since(start);
     return result;
@@ -335,6 +336,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     clock.end("repair");
     if (!repaired_template.changed() && !repaired_target.changed()) {
         MatchResult result = match_surfaces(template_mesh, target, options, clock);
+        report_landmarks(result, options.landmarks, target);
         result.stage_times = clock.times();
         return result;
     }
@@ -354,10 +356,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         result.other_reading =
             detail::carried_back(repaired_template, template_mesh.V, *result.other_reading);
     }
-    if (result.landmark_distance) {  // the template's own vertices, as carried back
-        result.landmark_distance = landmark_distance(options.landmarks.points, result.deformed.V,
-                                                     bounding_box_diagonal(target));
-    }
+    report_landmarks(result, options.landmarks, target);
     result.template_repairs = repaired_template.summary();
     result.target_repairs = repaired_target.summary();
     clock.end("repair");

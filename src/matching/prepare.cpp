@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 #include "genflow/exceptions.h"
 #include "genflow/operators/area.h"
@@ -20,14 +21,26 @@ namespace {
 // says of it (a body turned about fits d_H about as well).
 void steer_by_landmarks(std::vector<Similarity>& starts, const std::vector<Landmark>& landmarks,
                         const Eigen::MatrixX3d& template_vertices) {
-    const auto residual = [&](const Similarity& start) {
-        return landmark_mean_squared_distance(landmarks, start.apply(template_vertices));
-    };
-    std::stable_sort(starts.begin(), starts.end(), [&](const Similarity& a, const Similarity& b) {
-        return residual(a) < residual(b);
-    });
+    // Each start's residual once, from the landmarks' own vertices alone.
+    Eigen::MatrixX3d at_landmarks(static_cast<Eigen::Index>(landmarks.size()), 3);
+    std::vector<Landmark> by_row = landmarks;
+    for (std::size_t k = 0; k < landmarks.size(); ++k) {
+        at_landmarks.row(static_cast<Eigen::Index>(k)) = template_vertices.row(landmarks[k].vertex);
+        by_row[k].vertex = static_cast<Eigen::Index>(k);
+    }
+    std::vector<std::pair<double, Similarity>> ranked;
+    for (const Similarity& start : starts) {
+        ranked.emplace_back(landmark_mean_squared_distance(by_row, start.apply(at_landmarks)),
+                            start);
+    }
+    std::stable_sort(ranked.begin(), ranked.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    starts.clear();
     if (const std::optional<Similarity> fit = landmark_similarity(landmarks, template_vertices)) {
-        starts.insert(starts.begin(), *fit);
+        starts.push_back(*fit);
+    }
+    for (const auto& [residual, start] : ranked) {
+        starts.push_back(start);
     }
 }
 
