@@ -16,6 +16,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -33,11 +34,19 @@
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/spectral_map.h"
 #include "genflow/operators/area.h"
+#include "genflow/operators/mesh_size.h"
+#include "genflow/spatial/point_cloud_surface.h"
 #include "match_flags.h"
 
 namespace genflow::cli {
 
 namespace {
+
+// How each pair's target is given to the matcher.
+struct TargetForm {
+    bool points = false;  // its vertices alone, as a point cloud
+    double noise = 0;     // Gaussian noise on the points, σ in the target's mean edge lengths
+};
 
 struct BenchmarkOptions {
     std::string directory;
@@ -51,6 +60,7 @@ struct BenchmarkOptions {
     bool json = false;
     std::string method = "match";
     int landmarks = 0;  // per pair, from the ground truth (reference_landmarks())
+    TargetForm target;
     MatchFlags flags;
 };
 
@@ -165,6 +175,15 @@ std::vector<SurfacePoint> vertex_points(const TriangleMesh& mesh,
     return points;
 }
 
+// The points' positions, one row each.
+Eigen::MatrixX3d positions_of(const std::vector<SurfacePoint>& points) {
+    Eigen::MatrixX3d positions(static_cast<Eigen::Index>(points.size()), 3);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        positions.row(static_cast<Eigen::Index>(i)) = points[i].point.transpose();
+    }
+    return positions;
+}
+
 struct PairMap {
     std::vector<SurfacePoint> points;  // per template vertex
     double seconds = 0;
@@ -176,10 +195,31 @@ struct PairMap {
     double processor_seconds = 0;  // of the whole process: with one thread a pair, the pair's
 };
 
+// `to`'s vertices as a point cloud, each moved by Gaussian noise of σ = `noise` mean edge
+// lengths, drawn from a seed of the pair's names (the same cloud in every run).
+Eigen::MatrixX3d cloud_of(const Shape& to, const Shape& from, double noise) {
+    if (noise == 0) {
+        return to.mesh.V;
+    }
+    std::uint64_t seed = 14695981039346656037ULL;  // FNV-1a of the names
+    for (const char c : from.name + ">" + to.name) {
+        seed = (seed ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
+    }
+    std::mt19937_64 random(seed);
+    std::normal_distribution<double> normal(0, noise * mean_edge_length(to.mesh));
+    Eigen::MatrixX3d cloud = to.mesh.V;
+    for (Eigen::Index i = 0; i < cloud.rows(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            cloud(i, c) += normal(random);
+        }
+    }
+    return cloud;
+}
+
 // The map of `method` alone, timed by the wall clock: the deformed template's counterparts
 // ("match"), or the intrinsic vertex map alone ("spectral-map", spectral_map()).
 PairMap map_of_method(const std::string& method, const Shape& from, const Shape& to,
-                      const MatchOptions& options) {
+                      const MatchOptions& options, const TargetForm& target) {
     if (method == "spectral-map") {
         const auto start = std::chrono::steady_clock::now();
         const SpectralMap map = spectral_map(from.mesh, to.mesh);
@@ -187,8 +227,17 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                 {{"orientation_ratio", map.orientation_ratio}, {"basis_size", map.basis_size}}};
     }
-    const MatchResult result = match(from.mesh, to.mesh, options);
-    PairMap map{match_correspondence(result, to.mesh), result.seconds, match_choices(result)};
+    // As a point cloud, the target is matched on a surface of genflow's making; the map's
+    // points are then measured on the target itself, where they lie nearest.
+    const TriangleMesh matched = target.points
+                                     ? point_cloud_surface(cloud_of(to, from, target.noise))
+                                     : TriangleMesh{to.mesh};
+    const MatchResult result = match(from.mesh, matched, options);
+    std::vector<SurfacePoint> points = match_correspondence(result, matched);
+    if (target.points) {
+        points = closest_points(positions_of(points), to.mesh);
+    }
+    PairMap map{std::move(points), result.seconds, match_choices(result)};
     map.details["stage_times"] = stage_times_json(result);
     if (result.counterparts_moved) {
         map.closest = closest_points(result.deformed.V, to.mesh);
@@ -207,9 +256,9 @@ double processor_seconds() {
 // The map of `method`, timed by the processor clock too: a benchmark shares its machine, and
 // processor time does not grow while the pair waits for a core.
 PairMap map_of(const std::string& method, const Shape& from, const Shape& to,
-               const MatchOptions& options) {
+               const MatchOptions& options, const TargetForm& target) {
     const double processor_start = processor_seconds();
-    PairMap map = map_of_method(method, from, to, options);
+    PairMap map = map_of_method(method, from, to, options, target);
     map.processor_seconds = processor_seconds() - processor_start;
     return map;
 }
@@ -218,8 +267,9 @@ PairMap map_of(const std::string& method, const Shape& from, const Shape& to,
 // (write_correspondences()) unless it is empty.
 nlohmann::json run_pair(const Shape& from, const Shape& to, bool within,
                         const ReferenceSymmetry& symmetry, const std::string& method,
-                        const MatchOptions& options, const std::filesystem::path& map_file) {
-    const PairMap result = map_of(method, from, to, options);
+                        const TargetForm& target, const MatchOptions& options,
+                        const std::filesystem::path& map_file) {
+    const PairMap result = map_of(method, from, to, options, target);
     const std::vector<SurfacePoint>& map = result.points;
     if (!map_file.empty()) {
         write_correspondences(map_file, map);
@@ -396,7 +446,7 @@ nlohmann::json row_of(const BenchmarkOptions& options, const Shape& from, const 
     }
     nlohmann::json row;
     try {
-        row = run_pair(from, to, within, symmetry, options.method, pair_options,
+        row = run_pair(from, to, within, symmetry, options.method, options.target, pair_options,
                        output_dir.empty() ? std::filesystem::path()
                                           : pair_file(output_dir, from, to, ".map.txt"));
     } catch (const SolverError& e) {
@@ -446,6 +496,8 @@ nlohmann::json summary_json(const BenchmarkOptions& options, std::size_t shapes,
             {"shard", options.shard},
             {"method", options.method},
             {"landmarks", options.landmarks},
+            {"target_points", options.target.points},
+            {"target_noise", options.target.noise},
             {"geodesics", "shortest paths along the edges (Dijkstra)"},
             {"unit", "sqrt(area) of the target"},
             {"pck_step", kPckStep},
@@ -506,6 +558,12 @@ void run_benchmark(const BenchmarkOptions& options) {
         throw InvalidInput("--landmarks: " + std::to_string(options.landmarks) +
                            " asked, the shapes have " +
                            std::to_string(shapes.front().reference.size()) + " reference points");
+    }
+    if (options.target.points && options.method != "match") {
+        throw InvalidInput("--target-points: only --method match takes a point cloud");
+    }
+    if (options.target.noise > 0 && !options.target.points) {
+        throw InvalidInput("--target-noise: noise is added to a point cloud (--target-points)");
     }
     const std::vector<ShapePair> pairs = sample_of(options, shapes.size());
     const ReferenceSymmetry symmetry = symmetry_of(shapes);
@@ -578,6 +636,14 @@ void register_benchmark_command(CLI::App& app) {
         ->add_option("--landmarks", options->landmarks,
                      "Give each pair's match this many landmarks from the ground truth: reference "
                      "points spread over the template, as a user would click them")
+        ->check(CLI::NonNegativeNumber);
+    command->add_flag("--target-points", options->target.points,
+                      "Give each pair's match its target as a point cloud, its vertices alone "
+                      "(the errors are measured on the target mesh)");
+    command
+        ->add_option("--target-noise", options->target.noise,
+                     "Move each point of --target-points by Gaussian noise of this σ, in mean "
+                     "edge lengths of the target (the same draw for a pair in every run)")
         ->check(CLI::NonNegativeNumber);
     command->add_flag("--json", options->json, "Print the summary as JSON instead of tables");
     command

@@ -9,6 +9,8 @@
 
 #include "genflow/exceptions.h"
 #include "genflow/io/read_mesh.h"
+#include "genflow/io/read_points.h"
+#include "genflow/spatial/point_cloud_surface.h"
 
 namespace genflow::cli {
 
@@ -16,6 +18,32 @@ LoadedMesh load_mesh(const std::filesystem::path& path) {
     LoadedMesh loaded;
     loaded.path = path;
     loaded.mesh = read_mesh(path, &loaded.read_warnings);
+    loaded.report = validate(loaded.mesh);
+    if (!loaded.report.ok()) {
+        throw IoError(path.string() + ": " + loaded.report.first_error());
+    }
+    return loaded;
+}
+
+LoadedMesh load_target(const std::filesystem::path& path) {
+    LoadedMesh loaded;
+    loaded.path = path;
+    if (is_xyz_file(path)) {
+        loaded.mesh.V = read_points(path);
+    } else {
+        loaded.mesh = read_mesh(path, &loaded.read_warnings);
+    }
+    if (loaded.mesh.F.rows() == 0 && loaded.mesh.V.rows() > 0) {
+        loaded.points = loaded.mesh.V.rows();
+        try {
+            loaded.mesh = point_cloud_surface(loaded.mesh.V);
+        } catch (const InvalidInput& error) {
+            std::string problem = error.what();
+            problem.erase(0, problem.find(": ") + 2);  // the function's name
+            throw IoError(path.string() + ": a point cloud, but " + problem);
+        }
+        return loaded;  // a surface of our making: its oddities are not the file's
+    }
     loaded.report = validate(loaded.mesh);
     if (!loaded.report.ok()) {
         throw IoError(path.string() + ": " + loaded.report.first_error());

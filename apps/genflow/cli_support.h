@@ -30,11 +30,17 @@ struct LoadedMesh {
     TriangleMesh mesh;
     std::vector<std::string> read_warnings;
     ValidationReport report;
+    /// Where the file held points only: how many; `mesh` is then point_cloud_surface()'s.
+    Eigen::Index points = 0;
 };
 
 /// Reads and validates `path`. Throws IoError "<path>: <first validation error>" if the mesh
 /// has an error that no genflow algorithm can handle.
 LoadedMesh load_mesh(const std::filesystem::path& path);
+
+/// A target: a mesh as load_mesh() reads it, or a point cloud (an .xyz file, or a mesh file
+/// without faces) made a surface on its points by point_cloud_surface().
+LoadedMesh load_target(const std::filesystem::path& path);
 
 /// Prints "warning: <line>" on stderr for each reader warning and each validation warning.
 void print_warnings(const LoadedMesh& loaded);

@@ -54,13 +54,22 @@ void print_repairs(const std::string& path, const std::string& repairs) {
     }
 }
 
+void print_point_cloud(const LoadedMesh& target) {
+    if (target.points > 0) {
+        std::cerr << "note: " << target.path.string() << ": a point cloud of " << target.points
+                  << " points, matched on a surface of " << target.mesh.F.rows()
+                  << " triangles on them\n";
+    }
+}
+
 void run_match(const MatchCommandOptions& options) {
     require_writable_format(options.output);
     const LoadedMesh template_mesh = load_mesh(options.template_path);
-    const LoadedMesh target = load_mesh(options.target_path);
+    const LoadedMesh target = load_target(options.target_path);
     if (!options.json) {
         print_warnings(template_mesh);
         print_warnings(target);
+        print_point_cloud(target);
     }
     MatchJob job;
     if (!options.ground_truth.empty()) {
@@ -77,6 +86,7 @@ void run_match(const MatchCommandOptions& options) {
     job.target = target.mesh;
     job.template_name = options.template_path;
     job.target_name = options.target_path;
+    job.target_points = target.points;
     job.output = options.output;
     if (!options.correspondence.empty()) {
         job.correspondence = options.correspondence;
@@ -110,7 +120,9 @@ void run_match(const MatchCommandOptions& options) {
     const nlohmann::json summary = run_match_job(std::move(job));
     if (!options.json) {
         print_repairs(options.template_path, summary["template_repairs"].get<std::string>());
-        print_repairs(options.target_path, summary["target_repairs"].get<std::string>());
+        if (target.points == 0) {  // a point cloud's surface is genflow's, repairs and all
+            print_repairs(options.target_path, summary["target_repairs"].get<std::string>());
+        }
     }
     if (summary["doubtful"].get<bool>()) {
         std::cerr << "warning: " << options.target_path
@@ -159,7 +171,11 @@ void register_match_command(CLI::App& app) {
         "and connectivity, any rigid motion and scale) by the flow of the pseudo-Hausdorff "
         "distance under a deformation prior; writes the deformed template");
     command->add_option("template", options->template_path, "Template mesh (moves)")->required();
-    command->add_option("target", options->target_path, "Target mesh (fixed)")->required();
+    command
+        ->add_option(
+            "target", options->target_path,
+            "Target mesh (fixed), or a point cloud: an .xyz file or a mesh file without faces")
+        ->required();
     command->add_option("-o,--output", options->output, "Deformed template (.obj, .ply, .off)")
         ->required();
     command->add_option("--parts", options->parts,

@@ -17,7 +17,8 @@ struct MatchJob {
     TriangleMesh target;
     std::string template_name;  ///< for the summary
     std::string target_name;
-    std::filesystem::path output;                         ///< the deformed template
+    Eigen::Index target_points = 0;  ///< where the target was a point cloud, its points
+    std::filesystem::path output;    ///< the deformed template
     std::optional<std::filesystem::path> correspondence;  ///< per-vertex closest target points
     std::optional<std::filesystem::path> frames;          ///< animation frames
     std::optional<std::filesystem::path> summary;         ///< the JSON summary, as a file

@@ -115,7 +115,9 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
     for (const auto& [mesh, name] : {std::pair{&template_mesh, "template"}, {&target, "target"}}) {
         detail::require_valid_mesh(*mesh, "match");
         if (mesh->F.rows() == 0) {
-            throw InvalidInput(std::string("match: the ") + name + " has no faces");
+            throw InvalidInput(std::string("match: the ") + name +
+                               " has no faces (a point cloud is matched on "
+                               "point_cloud_surface()'s mesh)");
         }
         if (!(bounding_box_diagonal(*mesh) > 0)) {
             throw InvalidInput(std::string("match: the ") + name + " has zero extent");

@@ -62,6 +62,21 @@ std::pair<std::int64_t, double> PointIndex::nearest(const Eigen::Vector3d& query
     return {index, distance_squared};
 }
 
+void PointIndex::nearest(const Eigen::Vector3d& query, std::size_t count,
+                         std::vector<std::pair<std::uint32_t, double>>& found) const {
+    found.clear();
+    if (!impl_->tree || count == 0) {
+        return;
+    }
+    std::vector<std::uint32_t> indices(count);
+    std::vector<double> distances_squared(count);
+    const std::size_t kept =
+        impl_->tree->knnSearch(query.data(), count, indices.data(), distances_squared.data());
+    for (std::size_t k = 0; k < kept; ++k) {
+        found.emplace_back(indices[k], distances_squared[k]);
+    }
+}
+
 void PointIndex::within(const Eigen::Vector3d& query, double radius_squared,
                         std::vector<std::pair<std::uint32_t, double>>& found) const {
     found.clear();

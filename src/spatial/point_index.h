@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -22,6 +23,11 @@ public:
 
     /// The nearest point to `query`: (index, squared distance); (-1, inf) when empty.
     [[nodiscard]] std::pair<std::int64_t, double> nearest(const Eigen::Vector3d& query) const;
+
+    /// The `count` nearest points to `query` (fewer if the set is smaller), nearest first, as
+    /// (index, squared distance), into `found` (cleared first).
+    void nearest(const Eigen::Vector3d& query, std::size_t count,
+                 std::vector<std::pair<std::uint32_t, double>>& found) const;
 
     /// All points with squared distance ≤ `radius_squared`, as (index, squared distance),
     /// unsorted, into `found` (cleared first).

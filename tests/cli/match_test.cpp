@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "cli/cli_runner.h"
 #include "genflow/io/read_mesh.h"
@@ -254,6 +255,44 @@ TEST(MatchCli, TakesLandmarksAndRefusesABadFileWritingNothing) {
         run_genflow(command + quoted(directory / "marks.txt") + " --landmark-weight -1");
     EXPECT_EQ(negative.exit_code, 2);
     EXPECT_NE(negative.err.find("--landmark-weight"), std::string::npos) << negative.err;
+}
+
+// An .xyz file, or a mesh file without faces, is a point cloud target: matched on a surface
+// made on its points, reported in the summary; a bad one is refused before anything is written.
+TEST(MatchCli, TakesAPointCloudTargetAndRefusesABadOneWritingNothing) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh limb = make_limb(3);
+    Similarity turn;
+    turn.rotation = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::MatrixX3d points = turn.apply(make_limb(3, 5).V);
+    write_mesh(directory / "template.ply", limb);
+    {
+        std::ofstream xyz(directory / "scan.xyz");
+        xyz << "# x y z nx ny nz\n";
+        for (Eigen::Index i = 0; i < points.rows(); ++i) {
+            xyz << points(i, 0) << ' ' << points(i, 1) << ' ' << points(i, 2) << " 0 0 1\n";
+        }
+        std::ofstream(directory / "bad.xyz") << "0 0 0\n1 2\n";
+        std::ofstream(directory / "three.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    }
+    const auto out = directory / "out.ply";
+    const std::string command = "match " + quoted(directory / "template.ply") + " ";
+    const std::string flags = " -o " + quoted(out) + " --preset paper --levels 2";
+    const auto result = run_genflow(command + quoted(directory / "scan.xyz") + flags + " --json");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto summary = nlohmann::json::parse(result.out);
+    EXPECT_EQ(summary["target_points"], points.rows());
+    EXPECT_LT(summary["mean_distance_over_diagonal"].get<double>(), 0.01);
+    EXPECT_EQ(read_mesh(out).V.rows(), limb.V.rows());
+    std::filesystem::remove(out);
+    for (const auto& [file, says] :
+         {std::pair{"bad.xyz", "bad.xyz: line 2: expected 'x y z'"},
+          {"three.obj", "three.obj: a point cloud, but 3 points; at least 4 are needed"}}) {
+        const auto bad = run_genflow(command + quoted(directory / file) + flags);
+        EXPECT_EQ(bad.exit_code, 2);
+        EXPECT_NE(bad.err.find(says), std::string::npos) << bad.err;
+        EXPECT_FALSE(std::filesystem::exists(out));
+    }
 }
 
 TEST(MatchCli, RefusesBadInputAndWritesNothing) {
