@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -26,6 +27,7 @@
 #include "genflow/evaluation/geodesic_error.h"
 #include "genflow/evaluation/reference_landmarks.h"
 #include "genflow/evaluation/reference_symmetry.h"
+#include "genflow/evaluation/single_view.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
 #include "genflow/io/mesh_format.h"
@@ -46,6 +48,7 @@ namespace {
 struct TargetForm {
     bool points = false;  // its vertices alone, as a point cloud
     double noise = 0;     // Gaussian noise on the points, σ in the target's mean edge lengths
+    bool view = false;    // only the faces facing a camera (single_view()), from a random side
 };
 
 struct BenchmarkOptions {
@@ -147,6 +150,21 @@ double mean_of(const Eigen::VectorXd& values) {
     return values.mean();
 }
 
+// The mean of the reference points' errors where the target as given holds their vertex (none
+// seen: NaN, written as null).
+double mean_where_seen(const Eigen::VectorXd& errors, const std::vector<Eigen::Index>& reference,
+                       const std::vector<bool>& seen) {
+    double sum = 0;
+    int count = 0;
+    for (std::size_t k = 0; k < reference.size(); ++k) {
+        if (seen[static_cast<std::size_t>(reference[k])]) {
+            sum += errors[static_cast<Eigen::Index>(k)];
+            ++count;
+        }
+    }
+    return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
+}
+
 std::vector<int> histogram_of(const Eigen::VectorXd& errors) {
     std::vector<int> bins(kPckBins + 1, 0);  // the last: above the curve's range
     for (const double e : errors) {
@@ -193,27 +211,56 @@ struct PairMap {
     // The closest points of the reading the match did not keep, where it read twice.
     std::vector<SurfacePoint> other_reading = {};
     double processor_seconds = 0;  // of the whole process: with one thread a pair, the pair's
+    // Per target vertex, whether the target as given holds it (a single view); empty: all.
+    std::vector<bool> seen = {};
 };
 
-// `to`'s vertices as a point cloud, each moved by Gaussian noise of σ = `noise` mean edge
-// lengths, drawn from a seed of the pair's names (the same cloud in every run).
-Eigen::MatrixX3d cloud_of(const Shape& to, const Shape& from, double noise) {
-    if (noise == 0) {
-        return to.mesh.V;
+// Per vertex, whether a face uses it.
+std::vector<bool> seen_vertices(const TriangleMesh& mesh) {
+    std::vector<bool> seen(static_cast<std::size_t>(mesh.V.rows()), false);
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        for (int c = 0; c < 3; ++c) {
+            seen[static_cast<std::size_t>(mesh.F(f, c))] = true;
+        }
     }
-    std::uint64_t seed = 14695981039346656037ULL;  // FNV-1a of the names
+    return seen;
+}
+
+// A seed of the pair's names (FNV-1a), so that a pair's target is made the same in every run.
+std::uint64_t pair_seed(const Shape& from, const Shape& to) {
+    std::uint64_t seed = 14695981039346656037ULL;
     for (const char c : from.name + ">" + to.name) {
         seed = (seed ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
     }
-    std::mt19937_64 random(seed);
-    std::normal_distribution<double> normal(0, noise * mean_edge_length(to.mesh));
+    return seed;
+}
+
+// `to`'s vertices as a point cloud, each moved by Gaussian noise of σ = `noise` mean edge
+// lengths.
+Eigen::MatrixX3d cloud_of(const Shape& to, double noise, std::uint64_t seed) {
     Eigen::MatrixX3d cloud = to.mesh.V;
-    for (Eigen::Index i = 0; i < cloud.rows(); ++i) {
-        for (int c = 0; c < 3; ++c) {
-            cloud(i, c) += normal(random);
+    if (noise > 0) {
+        std::mt19937_64 random(seed);
+        std::normal_distribution<double> normal(0, noise * mean_edge_length(to.mesh));
+        for (Eigen::Index i = 0; i < cloud.rows(); ++i) {
+            for (int c = 0; c < 3; ++c) {
+                cloud(i, c) += normal(random);
+            }
         }
     }
     return cloud;
+}
+
+// The target as `form` gives it to the matcher.
+TriangleMesh target_in_form(const Shape& from, const Shape& to, const TargetForm& form) {
+    const std::uint64_t seed = pair_seed(from, to);
+    if (form.points) {
+        return point_cloud_surface(cloud_of(to, form.noise, seed));
+    }
+    if (form.view) {
+        return single_view(to.mesh, view_direction(seed));
+    }
+    return to.mesh;
 }
 
 // The map of `method` alone, timed by the wall clock: the deformed template's counterparts
@@ -227,17 +274,19 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                 {{"orientation_ratio", map.orientation_ratio}, {"basis_size", map.basis_size}}};
     }
-    // As a point cloud, the target is matched on a surface of genflow's making; the map's
-    // points are then measured on the target itself, where they lie nearest.
-    const TriangleMesh matched = target.points
-                                     ? point_cloud_surface(cloud_of(to, from, target.noise))
-                                     : TriangleMesh{to.mesh};
+    // A target in another form is matched as it is given; the map's points are then measured
+    // on the target mesh, where they lie nearest.
+    const TriangleMesh matched = target_in_form(from, to, target);
     const MatchResult result = match(from.mesh, matched, options);
     std::vector<SurfacePoint> points = match_correspondence(result, matched);
-    if (target.points) {
+    if (target.points || target.view) {
         points = closest_points(positions_of(points), to.mesh);
     }
     PairMap map{std::move(points), result.seconds, match_choices(result)};
+    if (target.view) {
+        map.seen = seen_vertices(matched);
+        map.details["seen_area_share"] = surface_area(matched) / surface_area(to.mesh);
+    }
     map.details["stage_times"] = stage_times_json(result);
     if (result.counterparts_moved) {
         map.closest = closest_points(result.deformed.V, to.mesh);
@@ -285,6 +334,9 @@ nlohmann::json run_pair(const Shape& from, const Shape& to, bool within,
                           {"seconds", result.seconds},
                           {"processor_seconds", result.processor_seconds},
                           {"details", result.details}};
+    if (!result.seen.empty()) {
+        row["mean_seen"] = mean_where_seen(errors.to_vertex, to.reference, result.seen);
+    }
     if (!result.closest.empty()) {
         row["mean_closest_points"] =
             mean_of(measure.errors_at(result.closest, from.reference, to.reference).to_vertex);
@@ -353,6 +405,24 @@ nlohmann::json stage_times_mean(const std::vector<nlohmann::json>& rows) {
     return means;
 }
 
+// Of the rows that measure the seen part (--target-view): its mean and worst pair, or null.
+nlohmann::json seen_summary(const std::vector<nlohmann::json>& rows) {
+    double sum = 0;
+    double worst = 0;
+    int count = 0;
+    for (const nlohmann::json& row : rows) {
+        if (row.contains("mean_seen") && row["mean_seen"].is_number()) {
+            sum += row["mean_seen"].get<double>();
+            worst = std::max(worst, row["mean_seen"].get<double>());
+            ++count;
+        }
+    }
+    if (count == 0) {
+        return nullptr;
+    }
+    return {{"pairs", count}, {"mean", sum / count}, {"worst_pair", worst}};
+}
+
 // The figures of a set of pairs' rows.
 nlohmann::json summary_of(const std::vector<nlohmann::json>& rows) {
     double sum = 0;
@@ -397,7 +467,8 @@ nlohmann::json summary_of(const std::vector<nlohmann::json>& rows) {
             {"seconds_mean", rows.empty() ? 0 : seconds / n},
             {"seconds_max", slowest},
             {"processor_seconds_mean", rows.empty() ? 0 : processor / n},
-            {"stage_times_mean", stage_times_mean(rows)}};
+            {"stage_times_mean", stage_times_mean(rows)},
+            {"seen", seen_summary(rows)}};
 }
 
 void print_summary_row(const char* set, const nlohmann::json& s) {
@@ -498,6 +569,7 @@ nlohmann::json summary_json(const BenchmarkOptions& options, std::size_t shapes,
             {"landmarks", options.landmarks},
             {"target_points", options.target.points},
             {"target_noise", options.target.noise},
+            {"target_view", options.target.view},
             {"geodesics", "shortest paths along the edges (Dijkstra)"},
             {"unit", "sqrt(area) of the target"},
             {"pck_step", kPckStep},
@@ -561,6 +633,10 @@ void run_benchmark(const BenchmarkOptions& options) {
     }
     if (options.target.points && options.method != "match") {
         throw InvalidInput("--target-points: only --method match takes a point cloud");
+    }
+    if (options.target.view && options.target.points) {
+        throw InvalidInput(
+            "--target-view: not with --target-points (a view of a cloud is not made)");
     }
     if (options.target.noise > 0 && !options.target.points) {
         throw InvalidInput("--target-noise: noise is added to a point cloud (--target-points)");
@@ -640,6 +716,10 @@ void register_benchmark_command(CLI::App& app) {
     command->add_flag("--target-points", options->target.points,
                       "Give each pair's match its target as a point cloud, its vertices alone "
                       "(the errors are measured on the target mesh)");
+    command->add_flag("--target-view", options->target.view,
+                      "Give each pair's match only the target's faces that face a camera from a "
+                      "random side (the same side for a pair in every run); the rows add the "
+                      "error of the reference points it sees, mean_seen");
     command
         ->add_option("--target-noise", options->target.noise,
                      "Move each point of --target-points by Gaussian noise of this σ, in mean "

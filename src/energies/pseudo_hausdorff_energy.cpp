@@ -550,6 +550,10 @@ void check_options(const PseudoHausdorffOptions& options, const char* caller) {
         throw InvalidInput(std::string(caller) + ": epsilon must be positive and finite, got " +
                            std::to_string(options.epsilon));
     }
+    if (!(options.moving_coverage >= 0 && options.moving_coverage <= 1)) {
+        throw InvalidInput(std::string(caller) + ": moving_coverage must lie in [0, 1], got " +
+                           std::to_string(options.moving_coverage));
+    }
     if (!detail::finite_at_least(options.truncation, 0) || options.truncation >= 0.5) {
         throw InvalidInput(std::string(caller) + ": truncation must lie in [0, 0.5), got " +
                            std::to_string(options.truncation));
@@ -672,13 +676,19 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
         options.epsilon * options.epsilon, options.truncation, std::exp(600 / options.alpha)};
 
     const TargetSums g = sum_target(target, source, p, work);  // g_j over the source
-    const SourceSums f = sum_source(source, target, p);        // f_i over the target
+    // f_i over the target, weighed by λ (none without the coverage term).
+    const bool covered = options.moving_coverage > 0;
+    const SourceSums f = covered ? sum_source(source, target, p) : SourceSums{};
+    const double log_coverage = covered ? std::log(options.moving_coverage) : kMinusInfinity;
 
-    // log S = LSE(log a_i − log f_i, log b_j − log g_j); d_H = ε·expm1(log S/(2α) − log ε).
+    // log S = LSE(log λ + log a_i − log f_i, log b_j − log g_j);
+    // d_H = ε·expm1(log S/(2α) − log ε).
     std::vector<double> terms;
     terms.reserve(source.active.size() + target.active.size());
     for (const std::uint32_t i : source.active) {
-        terms.push_back(source.log_weight[i] - f.log_f[i]);
+        if (covered) {
+            terms.push_back(log_coverage + source.log_weight[i] - f.log_f[i]);
+        }
     }
     for (const std::uint32_t j : target.active) {
         terms.push_back(target.log_weight[j] - g.log_g[j]);
@@ -687,10 +697,10 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
 
     PseudoHausdorffEvaluation result;
     result.value = options.epsilon * std::expm1(log_S / (2 * p.alpha) - std::log(options.epsilon));
-    result.pairs = f.pairs + g.pairs;
+    result.pairs = f.pairs + g.pairs;  // f.pairs: 0 without the coverage term
 
-    // c_ij = S^{1/(2α)−1} a_i b_j d^{−α−1}(f_i^{−2} + g_j^{−2}), as f- and g-parts:
-    // f-part = exp(base + log a_i − log f_i)·share_ij/d_ij, and symmetrically for g. The
+    // c_ij = S^{1/(2α)−1} a_i b_j d^{−α−1}(λ f_i^{−2} + g_j^{−2}), as f- and g-parts:
+    // f-part = exp(base + log λ + log a_i − log f_i)·share_ij/d_ij, and symmetrically for g. The
     // coefficients are formed in the log domain: S^{1/(2α)−1} alone may overflow.
     const double base = (1 / (2 * p.alpha) - 1) * log_S;
     const Eigen::Index n = source.points.rows();
@@ -708,7 +718,10 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
     for (Eigen::Index slot = 0; slot < source_slots; ++slot) {
         const std::uint32_t i = source.active[source.grid.id(static_cast<std::uint32_t>(slot))];
         Eigen::RowVector4d row =
-            std::exp(base + source.log_weight[i] - f.log_f[i]) * f.moments.row(i);
+            covered ? Eigen::RowVector4d(
+                          std::exp(base + log_coverage + source.log_weight[i] - f.log_f[i]) *
+                          f.moments.row(i))
+                    : Eigen::RowVector4d::Zero();
         for (std::size_t thread = 0; thread < thread_factor.size(); ++thread) {
             if (thread_factor[thread] > 0) {
                 row += thread_factor[thread] * work.coupled[thread].row(slot);

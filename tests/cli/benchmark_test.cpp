@@ -196,6 +196,35 @@ TEST(BenchmarkCli, MatchesEachPairOntoItsTargetsPoints) {
         << noise_alone.err;
 }
 
+// --target-view: each pair matched onto the faces of its target that face a camera from the
+// pair's own random side; the rows add the error where the view holds the reference points.
+TEST(BenchmarkCli, MatchesEachPairOntoASingleViewOfItsTarget) {
+    const test::TemporaryDirectory directory;
+    write_benchmark(directory.path());
+    const std::string command = "benchmark " + quoted(directory.path()) +
+                                " --pairs 2 --subject-size 2 --json --preset paper --target-view";
+    const auto result = run_genflow(command);
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto summary = nlohmann::json::parse(result.out);
+    EXPECT_TRUE(summary["target_view"].get<bool>());
+    ASSERT_EQ(summary["rows"].size(), 2U);
+    for (const auto& row : summary["rows"]) {
+        const double share = row["details"]["seen_area_share"].get<double>();
+        EXPECT_GT(share, 0.3) << row;  // about half of a closed surface faces a camera
+        EXPECT_LT(share, 0.7) << row;
+        EXPECT_TRUE(row["mean_seen"].is_number()) << row;
+    }
+    EXPECT_EQ(summary["all"]["seen"]["pairs"], 2);
+    const auto again = run_genflow(command);
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_EQ(nlohmann::json::parse(again.out)["rows"][0]["details"]["seen_area_share"],
+              summary["rows"][0]["details"]["seen_area_share"]);  // the same view every run
+    const auto both = run_genflow(command + " --target-points");
+    EXPECT_EQ(both.exit_code, 2);
+    EXPECT_NE(both.err.find("--target-view: not with --target-points"), std::string::npos)
+        << both.err;
+}
+
 TEST(BenchmarkCli, RefusesABadSetOrOptionWithOneLine) {
     const test::TemporaryDirectory directory;
     write_benchmark(directory.path());

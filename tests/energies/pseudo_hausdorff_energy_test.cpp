@@ -61,6 +61,68 @@ TEST(PseudoHausdorff, DifferentialMatchesFiniteDifferencesForSeveralAlphaAndEpsi
     }
 }
 
+// S = λ Σ_i a_i/f_i + Σ_j b_j/g_j written out in long double, without descriptors.
+double weighed_reference(const Pair& pair, double alpha, double epsilon, double coverage) {
+    const Eigen::VectorXd mx = lumped_masses(pair.X, MassType::Barycentric);
+    const Eigen::VectorXd my = lumped_masses(pair.Y, MassType::Barycentric);
+    const auto P = static_cast<double>(pair.X.V.rows());
+    const auto Q = static_cast<double>(pair.Y.V.rows());
+    std::vector<long double> f(pair.X.V.rows(), 0);
+    std::vector<long double> g(pair.Y.V.rows(), 0);
+    for (Eigen::Index i = 0; i < pair.X.V.rows(); ++i) {
+        for (Eigen::Index j = 0; j < pair.Y.V.rows(); ++j) {
+            const long double d =
+                (pair.X.V.row(i) - pair.Y.V.row(j)).squaredNorm() + epsilon * epsilon;
+            const long double power = std::pow(d, -static_cast<long double>(alpha));
+            f[static_cast<std::size_t>(i)] += my[j] / Q * power;
+            g[static_cast<std::size_t>(j)] += mx[i] / P * power;
+        }
+    }
+    long double S = 0;
+    for (Eigen::Index i = 0; i < pair.X.V.rows(); ++i) {
+        S += coverage * mx[i] / P / f[static_cast<std::size_t>(i)];
+    }
+    for (Eigen::Index j = 0; j < pair.Y.V.rows(); ++j) {
+        S += my[j] / Q / g[static_cast<std::size_t>(j)];
+    }
+    return static_cast<double>(std::pow(S, 1 / (2 * static_cast<long double>(alpha))) - epsilon);
+}
+
+// The moving set's coverage term weighed by λ: the value is the written-out sums', the
+// differential the finite differences', and at λ = 0 a moving point far from the fixed set
+// feels no pull (only the fixed points need a counterpart).
+TEST(PseudoHausdorff, WeighsTheMovingSetsCoverageTerm) {
+    Pair pair = small_pair();
+    pair.X.V.row(0) *= 3;  // a moving point with no counterpart
+    const Eigen::VectorXd mx = lumped_masses(pair.X, MassType::Barycentric);
+    const Eigen::VectorXd my = lumped_masses(pair.Y, MassType::Barycentric);
+    for (const double coverage : {0.0, 0.3, 1.0}) {
+        const PseudoHausdorffOptions options{
+            .alpha = 6, .epsilon = 0.04, .truncation = 0, .moving_coverage = coverage};
+        const auto value = [&](const TriangleMesh& m) {
+            return pseudo_hausdorff(m.V, mx, pair.Y.V, my, options).value;
+        };
+        const PseudoHausdorffEvaluation evaluation =
+            pseudo_hausdorff(pair.X.V, mx, pair.Y.V, my, options);
+        EXPECT_NEAR(evaluation.value, weighed_reference(pair, 6, 0.04, coverage), 1e-12)
+            << coverage;
+        EXPECT_LT(test::relative_error(evaluation.differential,
+                                       test::finite_difference_gradient(value, pair.X, 1e-6)),
+                  1e-6)
+            << coverage;
+        const double pull = evaluation.differential.row(0).norm() /
+                            evaluation.differential.rowwise().norm().maxCoeff();
+        if (coverage == 0) {
+            EXPECT_LT(pull, 1e-6);
+        } else {
+            EXPECT_GT(pull, 0.01);
+        }
+    }
+    EXPECT_THROW((void)pseudo_hausdorff(pair.X.V, mx, pair.Y.V, my,
+                                        {.epsilon = 0.04, .moving_coverage = 1.5}),
+                 InvalidInput);
+}
+
 TEST(PseudoHausdorff, TruncationStaysWithinItsBound) {
     const Pair pair = small_pair();
     for (const double alpha : {8.0, 16.0}) {

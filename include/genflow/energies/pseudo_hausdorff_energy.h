@@ -32,6 +32,12 @@ struct PseudoHausdorffOptions {
     /// 0 evaluates the exact O(P·Q) sums.
     double truncation = 1e-4;
     HausdorffWeights weights = HausdorffWeights::Paper;
+    /// Weight λ ∈ [0, 1] of the moving set's coverage term, S = λ Σ_i a_i/f_i + Σ_j b_j/g_j:
+    /// 1 is the paper's symmetric distance. 0 asks only that every fixed point be near the
+    /// moving set, so that moving points with no counterpart (a template's parts that a partial
+    /// target does not show) are not pulled onto whatever is near; the f-sums are then not
+    /// evaluated at all.
+    double moving_coverage = 1.0;
 };
 
 /// Per-point descriptors that make d_H compare the points in R^{3+k}, (x_i, φ_i) against
@@ -71,10 +77,10 @@ struct PseudoHausdorffEvaluation {
 /// moving mesh X (the argument of every call) and a fixed target Y (docs/formulas.md §8):
 ///
 ///     f_i = Σ_j b_j d_ij^{−α},   g_j = Σ_i a_i d_ij^{−α},   d_ij = |x_i − y_j|² + ε²
-///     S = Σ_i a_i/f_i + Σ_j b_j/g_j,   d_H = S^{1/(2α)} − ε,
+///     S = λ Σ_i a_i/f_i + Σ_j b_j/g_j,   d_H = S^{1/(2α)} − ε   (λ = 1 unless moving_coverage),
 ///
 /// with a_i, b_j from the barycentric vertex masses (HausdorffWeights). Its differential is
-/// ∂d_H/∂x_i = Σ_j c_ij (x_i − y_j), c_ij = S^{1/(2α)−1} a_i b_j d_ij^{−α−1}(f_i^{−2} + g_j^{−2}),
+/// ∂d_H/∂x_i = Σ_j c_ij (x_i − y_j), c_ij = S^{1/(2α)−1} a_i b_j d_ij^{−α−1}(λ f_i^{−2} + g_j^{−2}),
 /// the paper's formula, which holds with the masses m^x frozen (they are recomputed at every
 /// evaluation; docs/formulas.md §8 measures the omitted mass term at 3–6 % of the gradient and
 /// keeps the frozen-mass descent direction). Its linearization is A = diag(Σ_j c_ij), B_i = −Σ_j
