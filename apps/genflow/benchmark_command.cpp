@@ -37,6 +37,7 @@
 #include "genflow/matching/spectral_map.h"
 #include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
+#include "genflow/operators/normals.h"
 #include "genflow/spatial/point_cloud_surface.h"
 #include "match_flags.h"
 
@@ -46,9 +47,10 @@ namespace {
 
 // How each pair's target is given to the matcher.
 struct TargetForm {
-    bool points = false;  // its vertices alone, as a point cloud
-    double noise = 0;     // Gaussian noise on the points, σ in the target's mean edge lengths
-    bool view = false;    // only the faces facing a camera (single_view()), from a random side
+    bool points = false;   // its vertices alone, as a point cloud
+    bool normals = false;  // the points with the mesh's vertex normals, as a scanner gives them
+    double noise = 0;      // Gaussian noise on the points, σ in the target's mean edge lengths
+    bool view = false;     // only the faces facing a camera (single_view()), from a random side
 };
 
 struct BenchmarkOptions {
@@ -255,7 +257,8 @@ Eigen::MatrixX3d cloud_of(const Shape& to, double noise, std::uint64_t seed) {
 TriangleMesh target_in_form(const Shape& from, const Shape& to, const TargetForm& form) {
     const std::uint64_t seed = pair_seed(from, to);
     if (form.points) {
-        return point_cloud_surface(cloud_of(to, form.noise, seed));
+        return point_cloud_surface(cloud_of(to, form.noise, seed),
+                                   form.normals ? vertex_normals(to.mesh) : Eigen::MatrixX3d(0, 3));
     }
     if (form.view) {
         return single_view(to.mesh, view_direction(seed));
@@ -568,6 +571,7 @@ nlohmann::json summary_json(const BenchmarkOptions& options, std::size_t shapes,
             {"method", options.method},
             {"landmarks", options.landmarks},
             {"target_points", options.target.points},
+            {"target_normals", options.target.normals},
             {"target_noise", options.target.noise},
             {"target_view", options.target.view},
             {"geodesics", "shortest paths along the edges (Dijkstra)"},
@@ -637,6 +641,10 @@ void run_benchmark(const BenchmarkOptions& options) {
     if (options.target.view && options.target.points) {
         throw InvalidInput(
             "--target-view: not with --target-points (a view of a cloud is not made)");
+    }
+    if (options.target.normals && !options.target.points) {
+        throw InvalidInput(
+            "--target-normals: normals are given to a point cloud (--target-points)");
     }
     if (options.target.noise > 0 && !options.target.points) {
         throw InvalidInput("--target-noise: noise is added to a point cloud (--target-points)");
@@ -720,6 +728,9 @@ void register_benchmark_command(CLI::App& app) {
                       "Give each pair's match only the target's faces that face a camera from a "
                       "random side (the same side for a pair in every run); the rows add the "
                       "error of the reference points it sees, mean_seen");
+    command->add_flag("--target-normals", options->target.normals,
+                      "Give the points of --target-points their normals (the target mesh's "
+                      "vertex normals), as a scanner gives them");
     command
         ->add_option("--target-noise", options->target.noise,
                      "Move each point of --target-points by Gaussian noise of this σ, in mean "

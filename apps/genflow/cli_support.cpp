@@ -28,15 +28,18 @@ LoadedMesh load_mesh(const std::filesystem::path& path) {
 LoadedMesh load_target(const std::filesystem::path& path) {
     LoadedMesh loaded;
     loaded.path = path;
+    PointCloud cloud;
     if (is_xyz_file(path)) {
-        loaded.mesh.V = read_points(path);
+        cloud = read_points(path);
     } else {
         loaded.mesh = read_mesh(path, &loaded.read_warnings);
+        cloud.points = loaded.mesh.F.rows() == 0 ? loaded.mesh.V : Eigen::MatrixX3d(0, 3);
     }
-    if (loaded.mesh.F.rows() == 0 && loaded.mesh.V.rows() > 0) {
-        loaded.points = loaded.mesh.V.rows();
+    if (cloud.points.rows() > 0) {
+        loaded.points = cloud.points.rows();
+        loaded.normals = cloud.normals.rows() > 0;
         try {
-            loaded.mesh = point_cloud_surface(loaded.mesh.V);
+            loaded.mesh = point_cloud_surface(cloud.points, cloud.normals);
         } catch (const InvalidInput& error) {
             std::string problem = error.what();
             problem.erase(0, problem.find(": ") + 2);  // the function's name

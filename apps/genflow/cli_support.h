@@ -32,6 +32,7 @@ struct LoadedMesh {
     ValidationReport report;
     /// Where the file held points only: how many; `mesh` is then point_cloud_surface()'s.
     Eigen::Index points = 0;
+    bool normals = false;  ///< whether the point cloud came with its normals
 };
 
 /// Reads and validates `path`. Throws IoError "<path>: <first validation error>" if the mesh

@@ -57,8 +57,8 @@ void print_repairs(const std::string& path, const std::string& repairs) {
 void print_point_cloud(const LoadedMesh& target) {
     if (target.points > 0) {
         std::cerr << "note: " << target.path.string() << ": a point cloud of " << target.points
-                  << " points, matched on a surface of " << target.mesh.F.rows()
-                  << " triangles on them\n";
+                  << " points" << (target.normals ? " with normals" : "")
+                  << ", matched on a surface of " << target.mesh.F.rows() << " triangles on them\n";
     }
 }
 
@@ -87,6 +87,7 @@ void run_match(const MatchCommandOptions& options) {
     job.template_name = options.template_path;
     job.target_name = options.target_path;
     job.target_points = target.points;
+    job.target_normals = target.normals;
     job.output = options.output;
     if (!options.correspondence.empty()) {
         job.correspondence = options.correspondence;

@@ -76,6 +76,7 @@ nlohmann::json run_match_job(MatchJob job) {
     summary["landmarks"] = job.options.landmarks.points.size();
     summary["target_points"] =
         job.target_points > 0 ? nlohmann::json(job.target_points) : nlohmann::json(nullptr);
+    summary["target_normals"] = job.target_normals;
     if (job.ground_truth) {
         // Over the ground truth's own diagonal (the target's surface, sampled as the template).
         const CorrespondenceError error = correspondence_error(

@@ -18,6 +18,7 @@ struct MatchJob {
     std::string template_name;  ///< for the summary
     std::string target_name;
     Eigen::Index target_points = 0;  ///< where the target was a point cloud, its points
+    bool target_normals = false;     ///< whether the point cloud came with normals
     std::filesystem::path output;    ///< the deformed template
     std::optional<std::filesystem::path> correspondence;  ///< per-vertex closest target points
     std::optional<std::filesystem::path> frames;          ///< animation frames

@@ -12,11 +12,22 @@ namespace genflow {
 
 namespace {
 
-Eigen::MatrixX3d parse_xyz(const std::filesystem::path& path) {
+// Rows of `rows` as a #rows×3 matrix.
+Eigen::MatrixX3d matrix_of(const std::vector<Eigen::Vector3d>& rows) {
+    Eigen::MatrixX3d result(static_cast<Eigen::Index>(rows.size()), 3);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        result.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+    }
+    return result;
+}
+
+PointCloud parse_xyz(const std::filesystem::path& path) {
     const std::string text = detail::read_text(path);
     detail::TextScanner scanner(text);
     std::vector<std::string_view> tokens;
     std::vector<Eigen::Vector3d> points;
+    std::vector<Eigen::Vector3d> normals;
+    bool with_normals = false;  // as the first point's line says
     for (std::size_t line = 1; !scanner.at_end(); ++line) {
         const std::string_view content = scanner.next_line();
         detail::split_tokens(content.substr(0, content.find('#')), tokens);
@@ -26,23 +37,32 @@ Eigen::MatrixX3d parse_xyz(const std::filesystem::path& path) {
         const auto fail = [&](const std::string& problem) {
             throw IoError(path.string() + ": line " + std::to_string(line) + ": " + problem);
         };
-        if (tokens.size() < 3) {
-            fail("expected 'x y z' (optionally followed by a normal)");
+        if (points.empty()) {
+            with_normals = tokens.size() >= 6;
         }
-        Eigen::Vector3d point;
-        for (int c = 0; c < 3; ++c) {
-            const std::string_view token = tokens[static_cast<std::size_t>(c)];
-            if (!detail::parse_double(token, point[c]) || !std::isfinite(point[c])) {
-                fail("expected a finite coordinate, got '" + std::string(token) + "'");
+        if (tokens.size() < (with_normals ? 6U : 3U)) {
+            fail(with_normals ? "expected 'x y z nx ny nz', as on the first point's line"
+                              : "expected 'x y z' (optionally followed by a normal)");
+        }
+        const auto vector_at = [&](std::size_t first) {
+            Eigen::Vector3d v;
+            for (int c = 0; c < 3; ++c) {
+                const std::string_view token = tokens[first + static_cast<std::size_t>(c)];
+                if (!detail::parse_double(token, v[c]) || !std::isfinite(v[c])) {
+                    fail("expected a finite number, got '" + std::string(token) + "'");
+                }
+            }
+            return v;
+        };
+        points.push_back(vector_at(0));
+        if (with_normals) {
+            normals.push_back(vector_at(3));
+            if (normals.back().squaredNorm() == 0) {
+                fail("the normal is zero");
             }
         }
-        points.push_back(point);
     }
-    Eigen::MatrixX3d result(static_cast<Eigen::Index>(points.size()), 3);
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        result.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
-    }
-    return result;
+    return {matrix_of(points), matrix_of(normals)};
 }
 
 }  // namespace
@@ -51,20 +71,20 @@ bool is_xyz_file(const std::filesystem::path& path) {
     return detail::iequals(path.extension().string(), ".xyz");
 }
 
-Eigen::MatrixX3d read_points(const std::filesystem::path& path,
-                             std::vector<std::string>* warnings) {
-    Eigen::MatrixX3d points = is_xyz_file(path) ? parse_xyz(path) : read_mesh(path, warnings).V;
-    if (points.rows() == 0) {
+PointCloud read_points(const std::filesystem::path& path, std::vector<std::string>* warnings) {
+    PointCloud cloud = is_xyz_file(path) ? parse_xyz(path)
+                                         : PointCloud{read_mesh(path, warnings).V, {}};
+    if (cloud.points.rows() == 0) {
         throw IoError(path.string() + ": no point");
     }
-    for (Eigen::Index i = 0; i < points.rows(); ++i) {
-        if (!std::isfinite(points(i, 0)) || !std::isfinite(points(i, 1)) ||
-            !std::isfinite(points(i, 2))) {
+    for (Eigen::Index i = 0; i < cloud.points.rows(); ++i) {
+        if (!std::isfinite(cloud.points(i, 0)) || !std::isfinite(cloud.points(i, 1)) ||
+            !std::isfinite(cloud.points(i, 2))) {
             throw IoError(path.string() + ": point " + std::to_string(i) +
                           " has a non-finite coordinate");
         }
     }
-    return points;
+    return cloud;
 }
 
 }  // namespace genflow

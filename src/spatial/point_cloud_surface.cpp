@@ -2,6 +2,7 @@
 #include "genflow/spatial/point_cloud_surface.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -71,17 +72,35 @@ struct Neighbourhood {
     Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
 };
 
-Neighbourhood neighbourhood_of(const Eigen::MatrixX3d& points, Eigen::Index p,
-                               const detail::PointIndex& index,
+// The frame square to a given normal: (u, v, n), right-handed.
+Eigen::Matrix3d frame_about(const Eigen::Vector3d& normal) {
+    Eigen::Matrix3d frame;
+    frame.col(2) = normal.normalized();
+    frame.col(0) = frame.col(2).unitOrthogonal();
+    frame.col(1) = frame.col(2).cross(frame.col(0));
+    return frame;
+}
+
+// With `normals` (rows; none: estimated), a neighbour whose normal points against the point's
+// is on another sheet facing it across a gap narrower than the sampling (an arm against the
+// torso) and is left out, and the frame is square to the point's own normal.
+Neighbourhood neighbourhood_of(const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& normals,
+                               Eigen::Index p, const detail::PointIndex& index,
                                const std::vector<Eigen::Index>& first, int count) {
     std::vector<std::pair<std::uint32_t, double>> found;
     index.nearest(points.row(p).transpose(), static_cast<std::size_t>(count) + 1, found);
+    const bool given = normals.rows() > 0;
     Neighbourhood hood;
     for (const auto& [j, distance_squared] : found) {
         const auto q = static_cast<Eigen::Index>(j);
-        if (distance_squared > 0 && first[static_cast<std::size_t>(q)] == q) {
+        if (distance_squared > 0 && first[static_cast<std::size_t>(q)] == q &&
+            (!given || normals.row(p).dot(normals.row(q)) > 0)) {
             hood.nearest.push_back(q);
         }
+    }
+    if (given) {
+        hood.frame = frame_about(normals.row(p).transpose());
+        return hood;
     }
     const auto plane_count =
         static_cast<std::ptrdiff_t>(std::min(hood.nearest.size(), kPlaneNeighbours));
@@ -174,12 +193,14 @@ struct Vote {
 
 // Every point's neighbourhood (copies of an earlier point have none).
 std::vector<Neighbourhood> neighbourhoods(const Eigen::MatrixX3d& points,
+                                          const Eigen::MatrixX3d& normals,
                                           const std::vector<Eigen::Index>& first, int count) {
     const detail::PointIndex index(points);
     std::vector<Neighbourhood> hoods(static_cast<std::size_t>(points.rows()));
     for (Eigen::Index p = 0; p < points.rows(); ++p) {
         if (first[static_cast<std::size_t>(p)] == p) {
-            hoods[static_cast<std::size_t>(p)] = neighbourhood_of(points, p, index, first, count);
+            hoods[static_cast<std::size_t>(p)] =
+                neighbourhood_of(points, normals, p, index, first, count);
         }
     }
     return hoods;
@@ -399,6 +420,14 @@ std::vector<int> orientable_faces(std::vector<Face>& faces, Eigen::Index vertex_
     return orientation.component;
 }
 
+std::vector<Eigen::Vector3d> given_normals(const Eigen::MatrixX3d& normals) {
+    std::vector<Eigen::Vector3d> result;
+    for (Eigen::Index i = 0; i < normals.rows(); ++i) {
+        result.emplace_back(normals.row(i).transpose().normalized());
+    }
+    return result;
+}
+
 void flip(Face& face) {
     std::swap(face[1], face[2]);
 }
@@ -438,7 +467,8 @@ void orient_outward(std::vector<Face>& faces, const std::vector<int>& component,
     }
 }
 
-void check_points(const Eigen::MatrixX3d& points, const PointCloudSurfaceOptions& options) {
+void check_points(const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& normals,
+                  const PointCloudSurfaceOptions& options) {
     if (points.rows() < 4) {
         throw InvalidInput("point_cloud_surface: " + std::to_string(points.rows()) +
                            " points; at least 4 are needed");
@@ -449,15 +479,31 @@ void check_points(const Eigen::MatrixX3d& points, const PointCloudSurfaceOptions
     if (options.neighbours < 4) {
         throw InvalidInput("point_cloud_surface: neighbours must be at least 4");
     }
+    if (normals.rows() > 0 && normals.rows() != points.rows()) {
+        throw InvalidInput("point_cloud_surface: " + std::to_string(normals.rows()) +
+                           " normals for " + std::to_string(points.rows()) + " points");
+    }
+    for (Eigen::Index i = 0; i < normals.rows(); ++i) {
+        if (!detail::all_finite(Eigen::Vector3d(normals.row(i).transpose())) ||
+            normals.row(i).squaredNorm() == 0) {
+            throw InvalidInput("point_cloud_surface: normal " + std::to_string(i) +
+                               " is zero or not finite");
+        }
+    }
 }
 
 }  // namespace
 
 TriangleMesh point_cloud_surface(const Eigen::MatrixX3d& points,
                                  const PointCloudSurfaceOptions& options) {
-    check_points(points, options);
+    return point_cloud_surface(points, Eigen::MatrixX3d(0, 3), options);
+}
+
+TriangleMesh point_cloud_surface(const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& normals,
+                                 const PointCloudSurfaceOptions& options) {
+    check_points(points, normals, options);
     const std::vector<Neighbourhood> hoods =
-        neighbourhoods(points, first_copies(points), options.neighbours);
+        neighbourhoods(points, normals, first_copies(points), options.neighbours);
     std::vector<Face> faces =
         manifold_faces(ranked_triangles(votes_of_fans(points, hoods), points), points);
     if (faces.empty()) {
@@ -466,7 +512,8 @@ TriangleMesh point_cloud_surface(const Eigen::MatrixX3d& points,
             "far apart for their neighbours to agree)");
     }
     const std::vector<int> component = orientable_faces(faces, points.rows());
-    orient_outward(faces, component, points, oriented_normals(hoods));
+    orient_outward(faces, component, points,
+                   normals.rows() > 0 ? given_normals(normals) : oriented_normals(hoods));
     TriangleMesh mesh{points, Eigen::MatrixX3i(static_cast<Eigen::Index>(faces.size()), 3)};
     for (std::size_t f = 0; f < faces.size(); ++f) {
         for (int c = 0; c < 3; ++c) {

@@ -189,6 +189,11 @@ TEST(BenchmarkCli, MatchesEachPairOntoItsTargetsPoints) {
     EXPECT_EQ(spectral.exit_code, 2);
     EXPECT_NE(spectral.err.find("--target-points: only --method match"), std::string::npos)
         << spectral.err;
+    const auto normals_alone = run_genflow(command + " --target-normals");
+    EXPECT_EQ(normals_alone.exit_code, 2);
+    EXPECT_NE(normals_alone.err.find("--target-normals: normals are given to a point cloud"),
+              std::string::npos)
+        << normals_alone.err;
     const auto noise_alone = run_genflow(command + " --target-noise 0.1");
     EXPECT_EQ(noise_alone.exit_code, 2);
     EXPECT_NE(noise_alone.err.find("--target-noise: noise is added to a point cloud"),

@@ -15,6 +15,7 @@
 #include "genflow/io/write_mesh.h"
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh/primitives.h"
+#include "genflow/operators/normals.h"
 
 namespace genflow {
 namespace {
@@ -264,13 +265,15 @@ TEST(MatchCli, TakesAPointCloudTargetAndRefusesABadOneWritingNothing) {
     const TriangleMesh limb = make_limb(3);
     Similarity turn;
     turn.rotation = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    const Eigen::MatrixX3d points = turn.apply(make_limb(3, 5).V);
+    const TriangleMesh sampled = make_limb(3, 5);
+    const Eigen::MatrixX3d points = turn.apply(sampled.V);
+    const Eigen::MatrixX3d normals = vertex_normals(sampled) * turn.rotation.transpose();
     write_mesh(directory / "template.ply", limb);
     {
         std::ofstream xyz(directory / "scan.xyz");
         xyz << "# x y z nx ny nz\n";
         for (Eigen::Index i = 0; i < points.rows(); ++i) {
-            xyz << points(i, 0) << ' ' << points(i, 1) << ' ' << points(i, 2) << " 0 0 1\n";
+            xyz << points.row(i) << ' ' << normals.row(i) << '\n';
         }
         std::ofstream(directory / "bad.xyz") << "0 0 0\n1 2\n";
         std::ofstream(directory / "three.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
@@ -282,6 +285,7 @@ TEST(MatchCli, TakesAPointCloudTargetAndRefusesABadOneWritingNothing) {
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto summary = nlohmann::json::parse(result.out);
     EXPECT_EQ(summary["target_points"], points.rows());
+    EXPECT_TRUE(summary["target_normals"].get<bool>());
     EXPECT_LT(summary["mean_distance_over_diagonal"].get<double>(), 0.01);
     EXPECT_EQ(read_mesh(out).V.rows(), limb.V.rows());
     std::filesystem::remove(out);

@@ -11,14 +11,20 @@ namespace genflow {
 /// Whether `path` names an XYZ point file (extension .xyz, case-insensitive).
 [[nodiscard]] bool is_xyz_file(const std::filesystem::path& path);
 
-/// Reads the points of a point cloud (#P×3): an XYZ file (one point per line, `x y z`,
-/// optionally followed by more numbers such as a normal `nx ny nz`, which are not needed and
-/// skipped; `#` starts a comment), or the vertices of an OBJ, PLY, OFF or STL file (its faces,
-/// if it has any, are not read into the result).
+/// A point cloud's points and, where its file gives them, their normals.
+struct PointCloud {
+    Eigen::MatrixX3d points;   ///< #P×3
+    Eigen::MatrixX3d normals;  ///< #P×3, or no rows
+};
+
+/// Reads a point cloud: an XYZ file (one point per line, `x y z`, or `x y z nx ny nz` with its
+/// normal on every line; further numbers are skipped; `#` starts a comment), or the vertices of
+/// an OBJ, PLY, OFF or STL file (its faces, if it has any, are not read; nor are its normals).
 /// \param warnings  if given, receives the mesh reader's warnings.
 /// \throws IoError "<path>: <problem>" (for XYZ "<path>: line N: <problem>") if the file cannot
-///         be read, is malformed, holds a non-finite coordinate or no point.
-[[nodiscard]] Eigen::MatrixX3d read_points(const std::filesystem::path& path,
-                                           std::vector<std::string>* warnings = nullptr);
+///         be read, is malformed, holds a non-finite coordinate, a zero normal, no point, or
+///         normals on some lines only.
+[[nodiscard]] PointCloud read_points(const std::filesystem::path& path,
+                                     std::vector<std::string>* warnings = nullptr);
 
 }  // namespace genflow

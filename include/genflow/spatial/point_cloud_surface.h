@@ -46,4 +46,16 @@ struct PointCloudSurfaceOptions {
 [[nodiscard]] TriangleMesh point_cloud_surface(const Eigen::MatrixX3d& points,
                                                const PointCloudSurfaceOptions& options = {});
 
+/// The same with the points' normals (#P×3, any length, pointing out of the surface, as a
+/// scanner gives them). They settle what positions alone cannot where two sheets face each
+/// other across a gap narrower than the sampling (an arm against the torso, the thighs): a
+/// neighbour whose normal points against a point's is on the other sheet and is left out of
+/// its fan, so no face bridges the gap. Each tangent plane is then the one square to the point's
+/// normal, and the faces take the normals' side.
+/// \throws InvalidInput as above, or if there is not one normal per point or a normal is zero
+///         or not finite.
+[[nodiscard]] TriangleMesh point_cloud_surface(const Eigen::MatrixX3d& points,
+                                               const Eigen::MatrixX3d& normals,
+                                               const PointCloudSurfaceOptions& options = {});
+
 }  // namespace genflow
