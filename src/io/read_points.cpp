@@ -72,8 +72,8 @@ bool is_xyz_file(const std::filesystem::path& path) {
 }
 
 PointCloud read_points(const std::filesystem::path& path, std::vector<std::string>* warnings) {
-    PointCloud cloud = is_xyz_file(path) ? parse_xyz(path)
-                                         : PointCloud{read_mesh(path, warnings).V, {}};
+    PointCloud cloud =
+        is_xyz_file(path) ? parse_xyz(path) : PointCloud{read_mesh(path, warnings).V, {}};
     if (cloud.points.rows() == 0) {
         throw IoError(path.string() + ": no point");
     }

@@ -80,11 +80,11 @@ struct PseudoHausdorffEvaluation {
 ///     S = λ Σ_i a_i/f_i + Σ_j b_j/g_j,   d_H = S^{1/(2α)} − ε   (λ = 1 unless moving_coverage),
 ///
 /// with a_i, b_j from the barycentric vertex masses (HausdorffWeights). Its differential is
-/// ∂d_H/∂x_i = Σ_j c_ij (x_i − y_j), c_ij = S^{1/(2α)−1} a_i b_j d_ij^{−α−1}(λ f_i^{−2} + g_j^{−2}),
-/// the paper's formula, which holds with the masses m^x frozen (they are recomputed at every
-/// evaluation; docs/formulas.md §8 measures the omitted mass term at 3–6 % of the gradient and
-/// keeps the frozen-mass descent direction). Its linearization is A = diag(Σ_j c_ij), B_i = −Σ_j
-/// c_ij y_j, exact at X.
+/// ∂d_H/∂x_i = Σ_j c_ij (x_i − y_j), c_ij = S^{1/(2α)−1} a_i b_j d_ij^{−α−1}(λ f_i^{−2} +
+/// g_j^{−2}), the paper's formula, which holds with the masses m^x frozen (they are recomputed at
+/// every evaluation; docs/formulas.md §8 measures the omitted mass term at 3–6 % of the gradient
+/// and keeps the frozen-mass descent direction). Its linearization is A = diag(Σ_j c_ij), B_i =
+/// −Σ_j c_ij y_j, exact at X.
 ///
 /// Sums run in the log domain (no overflow or underflow for α up to hundreds and any scale);
 /// with truncation > 0 a uniform grid restricts them to near neighbours (as in the paper; the
