@@ -55,10 +55,17 @@ void print_repairs(const std::string& path, const std::string& repairs) {
 }
 
 void print_point_cloud(const LoadedMesh& target) {
-    if (target.points > 0) {
-        std::cerr << "note: " << target.path.string() << ": a point cloud of " << target.points
-                  << " points" << (target.normals ? " with normals" : "")
-                  << ", matched on a surface of " << target.mesh.F.rows() << " triangles on them\n";
+    if (target.points == 0) {
+        return;
+    }
+    std::cerr << "note: " << target.path.string() << ": a point cloud of " << target.points
+              << " points" << (target.normals ? " with normals" : "")
+              << ", matched on a surface of " << target.mesh.F.rows() << " triangles on them\n";
+    if (!target.normals) {
+        std::cerr << "warning: " << target.path.string()
+                  << ": no normals: where two sheets face each other closer than the points' "
+                     "spacing (an arm against the torso), the surface may bridge them; give "
+                     "'x y z nx ny nz' lines where the scanner has normals\n";
     }
 }
 

@@ -275,6 +275,10 @@ TEST(MatchCli, TakesAPointCloudTargetAndRefusesABadOneWritingNothing) {
         for (Eigen::Index i = 0; i < points.rows(); ++i) {
             xyz << points.row(i) << ' ' << normals.row(i) << '\n';
         }
+        std::ofstream bare(directory / "bare.xyz");
+        for (Eigen::Index i = 0; i < points.rows(); ++i) {
+            bare << points.row(i) << '\n';
+        }
         std::ofstream(directory / "bad.xyz") << "0 0 0\n1 2\n";
         std::ofstream(directory / "three.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     }
@@ -288,6 +292,11 @@ TEST(MatchCli, TakesAPointCloudTargetAndRefusesABadOneWritingNothing) {
     EXPECT_TRUE(summary["target_normals"].get<bool>());
     EXPECT_LT(summary["mean_distance_over_diagonal"].get<double>(), 0.01);
     EXPECT_EQ(read_mesh(out).V.rows(), limb.V.rows());
+    std::filesystem::remove(out);
+    // Without normals it matches too, and says what normals would settle.
+    const auto bare = run_genflow(command + quoted(directory / "bare.xyz") + flags);
+    ASSERT_EQ(bare.exit_code, 0) << bare.err;
+    EXPECT_NE(bare.err.find("bare.xyz: no normals"), std::string::npos) << bare.err;
     std::filesystem::remove(out);
     for (const auto& [file, says] :
          {std::pair{"bad.xyz", "bad.xyz: line 2: expected 'x y z'"},
