@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -152,10 +151,11 @@ double mean_of(const Eigen::VectorXd& values) {
     return values.mean();
 }
 
-// The mean of the reference points' errors where the target as given holds their vertex (none
-// seen: NaN, written as null).
-double mean_where_seen(const Eigen::VectorXd& errors, const std::vector<Eigen::Index>& reference,
-                       const std::vector<bool>& seen) {
+// The mean of the reference points' errors where the target as given holds their vertex, or
+// null where it holds none.
+nlohmann::json mean_where_seen(const Eigen::VectorXd& errors,
+                               const std::vector<Eigen::Index>& reference,
+                               const std::vector<bool>& seen) {
     double sum = 0;
     int count = 0;
     for (std::size_t k = 0; k < reference.size(); ++k) {
@@ -164,7 +164,7 @@ double mean_where_seen(const Eigen::VectorXd& errors, const std::vector<Eigen::I
             ++count;
         }
     }
-    return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
+    return count > 0 ? nlohmann::json(sum / count) : nlohmann::json(nullptr);
 }
 
 std::vector<int> histogram_of(const Eigen::VectorXd& errors) {
