@@ -195,15 +195,6 @@ std::vector<SurfacePoint> vertex_points(const TriangleMesh& mesh,
     return points;
 }
 
-// The points' positions, one row each.
-Eigen::MatrixX3d positions_of(const std::vector<SurfacePoint>& points) {
-    Eigen::MatrixX3d positions(static_cast<Eigen::Index>(points.size()), 3);
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        positions.row(static_cast<Eigen::Index>(i)) = points[i].point.transpose();
-    }
-    return positions;
-}
-
 struct PairMap {
     std::vector<SurfacePoint> points;  // per template vertex
     double seconds = 0;

@@ -14,14 +14,23 @@
 
 namespace genflow::cli {
 
+namespace {
+
+// Validates the mesh read into `loaded`; throws IoError "<path>: <first validation error>".
+void check_loaded(LoadedMesh& loaded) {
+    loaded.report = validate(loaded.mesh);
+    if (!loaded.report.ok()) {
+        throw IoError(loaded.path.string() + ": " + loaded.report.first_error());
+    }
+}
+
+}  // namespace
+
 LoadedMesh load_mesh(const std::filesystem::path& path) {
     LoadedMesh loaded;
     loaded.path = path;
     loaded.mesh = read_mesh(path, &loaded.read_warnings);
-    loaded.report = validate(loaded.mesh);
-    if (!loaded.report.ok()) {
-        throw IoError(path.string() + ": " + loaded.report.first_error());
-    }
+    check_loaded(loaded);
     return loaded;
 }
 
@@ -47,10 +56,7 @@ LoadedMesh load_target(const std::filesystem::path& path) {
         }
         return loaded;  // a surface of our making: its oddities are not the file's
     }
-    loaded.report = validate(loaded.mesh);
-    if (!loaded.report.ok()) {
-        throw IoError(path.string() + ": " + loaded.report.first_error());
-    }
+    check_loaded(loaded);
     return loaded;
 }
 

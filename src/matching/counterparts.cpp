@@ -56,15 +56,6 @@ Eigen::MatrixXd in_units_of_area(const LaplacianEigenbasis& basis) {
     return basis.functions * std::sqrt(basis.masses.sum());
 }
 
-// The points themselves, a row each.
-Eigen::MatrixX3d positions_of(const std::vector<SurfacePoint>& points) {
-    Eigen::MatrixX3d positions(static_cast<Eigen::Index>(points.size()), 3);
-    for (Eigen::Index i = 0; i < positions.rows(); ++i) {
-        positions.row(i) = points[static_cast<std::size_t>(i)].point.transpose();
-    }
-    return positions;
-}
-
 // Per point, the corner of its face nearest to it: the vertex map ZoomOut starts from.
 std::vector<Eigen::Index> nearest_corners(const TriangleMesh& target,
                                           const std::vector<SurfacePoint>& points) {

@@ -153,6 +153,14 @@ struct TriangleBvh::Impl {
     }
 };
 
+Eigen::MatrixX3d positions_of(const std::vector<SurfacePoint>& points) {
+    Eigen::MatrixX3d positions(static_cast<Eigen::Index>(points.size()), 3);
+    for (Eigen::Index i = 0; i < positions.rows(); ++i) {
+        positions.row(i) = points[static_cast<std::size_t>(i)].point.transpose();
+    }
+    return positions;
+}
+
 TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>()) {
     detail::require_valid_mesh(mesh, "TriangleBvh");
     if (mesh.F.rows() == 0) {

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "genflow/mesh.h"
 
@@ -23,6 +24,9 @@ struct SurfacePoint {
     Eigen::Vector3d point;        ///< the closest point itself
     double distance = 0;          ///< |query − point|
 };
+
+/// The points' positions (SurfacePoint::point), a row each.
+[[nodiscard]] Eigen::MatrixX3d positions_of(const std::vector<SurfacePoint>& points);
 
 /// Closest-point queries on a fixed triangle mesh through a bounding-volume hierarchy (axis-
 /// aligned boxes, median split, best-first traversal): O(log #F) per query on reasonable
