@@ -37,6 +37,7 @@
 #include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/operators/normals.h"
+#include "genflow/operators/volume.h"
 #include "genflow/spatial/point_cloud_surface.h"
 #include "match_flags.h"
 
@@ -280,6 +281,11 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
     if (target.view) {
         map.seen = seen_vertices(matched);
         map.details["seen_area_share"] = surface_area(matched) / surface_area(to.mesh);
+        // A template that folds its unseen side onto the view loses its volume.
+        const double volume = enclosed_volume(from.mesh);
+        map.details["volume_kept"] = volume > 0
+                                         ? nlohmann::json(enclosed_volume(result.deformed) / volume)
+                                         : nlohmann::json();
     }
     map.details["stage_times"] = stage_times_json(result);
     if (result.counterparts_moved) {

@@ -121,7 +121,8 @@ nlohmann::json number_or_null(const std::optional<Number>& value) {
 }  // namespace
 
 nlohmann::json match_choices(const MatchResult& result) {
-    return {{"stretch_weight", result.stretch_weight},
+    return {{"partial_target", result.partial_target},
+            {"stretch_weight", result.stretch_weight},
             {"eigenfunction_guidance", result.eigenfunction_guidance},
             {"signature_fallback", result.signature_fallback},
             {"refinement_guidance", result.refinement_guidance},

@@ -125,12 +125,19 @@ void run_match(const MatchCommandOptions& options) {
             read_landmarks(options.landmarks, template_mesh.mesh.V.rows(), target.mesh);
     }
     job.progress_bar = !options.json && !options.quiet;
+    const bool extent_automatic = job.options.partial.extent == TargetExtent::Automatic;
     const nlohmann::json summary = run_match_job(std::move(job));
     if (!options.json) {
         print_repairs(options.template_path, summary["template_repairs"].get<std::string>());
         if (target.points == 0) {  // a point cloud's surface is genflow's, repairs and all
             print_repairs(options.target_path, summary["target_repairs"].get<std::string>());
         }
+    }
+    if (summary["partial_target"].get<bool>() && extent_automatic && !options.json) {
+        std::cerr << "note: " << options.target_path
+                  << ": shows only part of the template (its boundary is long for its area): "
+                     "matched by the one-sided distance, at the template's scale, without the "
+                     "intrinsic stages; --target-extent complete matches it as a whole\n";
     }
     if (summary["doubtful"].get<bool>()) {
         std::cerr << "warning: " << options.target_path

@@ -191,6 +191,14 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
         ->check(CLI::Range(0, 100))
         ->excludes(implicit)
         ->capture_default_str();
+    command
+        .add_option("--target-extent", flags.target_extent,
+                    "How much of the template the target shows: partial (a single view, large "
+                    "holes, a limb cut off: matched by the one-sided distance, at the template's "
+                    "scale, without the intrinsic stages), complete, or auto (partial if its "
+                    "boundary is long for its area)")
+        ->check(CLI::IsMember({"auto", "complete", "partial"}))
+        ->capture_default_str();
     command.add_flag("--no-align", flags.no_align,
                      "Skip the global rigid alignment (the inputs are already aligned)");
 }
@@ -210,6 +218,7 @@ MatchOptions resolved(const MatchFlags& flags, bool has_parts) {
         options.signatures_reading.enabled && !flags.no_signatures_reading;
     options.signatures_reading.report_orientation =
         options.signatures_reading.report_orientation || flags.report_orientation;
+    options.partial.extent = *parse_target_extent(flags.target_extent);
     return options;
 }
 

@@ -22,6 +22,7 @@ struct MatchFlags {
     bool no_signatures_reading = false;
     bool report_orientation = false;
     bool no_counterparts = false;
+    std::string target_extent = "auto";  ///< to_string(TargetExtent)
 };
 
 /// Declares `--prior` on `command`, writing into `flags` (which must outlive the parse).

@@ -14,6 +14,7 @@
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/parts/quasi_articulated_metric.h"
+#include "matching/partial_target.h"
 
 namespace genflow::detail {
 
@@ -71,7 +72,8 @@ PseudoHausdorffEnergy LevelFlows::distance_to_target(const Level& level, double 
     return PseudoHausdorffEnergy(level.target,
                                  {.alpha = options_.alpha,
                                   .epsilon = epsilon_factor * mean_edge_length(level.target),
-                                  .truncation = options_.truncation},
+                                  .truncation = options_.truncation,
+                                  .moving_coverage = matches_partial_target(options_) ? 0.0 : 1.0},
                                  descriptors);
 }
 

@@ -20,6 +20,7 @@
 #include "matching/flow_memo.h"
 #include "matching/guided_rounds.h"
 #include "matching/level_flow.h"
+#include "matching/partial_target.h"
 #include "matching/prepare.h"
 #include "matching/selection.h"
 #include "matching/signatures_reading.h"
@@ -143,6 +144,7 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
         !detail::finite_above(options.articulated_finest_global, 0) ||
         options.articulated_finest_global > 1 ||
         !detail::finite_above(options.counterparts.reach, 0) || options.quasi_newton_memory < 0 ||
+        !detail::finite_at_least(options.partial.normal_weight, 0) ||
         (options.quasi_newton_memory > 0 && options.implicit)) {
         throw InvalidInput(
             "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
@@ -156,6 +158,7 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
             "second_opinion.alternative_starts >= 0, second_opinion.alternative_starts_above >= 0 "
             "and "
             "articulated_finest_global in (0, 1], counterparts.reach > 0, "
+            "partial.normal_weight >= 0, "
             "quasi_newton_memory >= 0 (0 with implicit steps)");
     }
     check_landmarks(options.landmarks, template_mesh.V.rows());
@@ -330,14 +333,19 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
 }  // namespace
 
 MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
-                  const MatchOptions& options) {
-    check_inputs(template_mesh, target, options);
+                  const MatchOptions& given) {
+    check_inputs(template_mesh, target, given);
     detail::StageClock clock;
+    const MatchOptions options = detail::resolved_for_target(given, template_mesh, target);
+    const bool partial = detail::matches_partial_target(options);
     const RepairedSurface repaired_template = repair_surface(template_mesh);
-    const RepairedSurface repaired_target = repair_surface(target);
+    // A partial target's pieces are all surface the template must cover.
+    const RepairedSurface repaired_target =
+        repair_surface(target, {.largest_component_only = !partial});
     clock.end("repair");
     if (!repaired_template.changed() && !repaired_target.changed()) {
         MatchResult result = match_surfaces(template_mesh, target, options, clock);
+        result.partial_target = partial;
         report_landmarks(result, options.landmarks, target);
         result.stage_times = clock.times();
         return result;
@@ -349,6 +357,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     on_repaired.landmarks.points = repaired_landmarks(options.landmarks.points, repaired_template);
     MatchResult result =
         match_surfaces(repaired_template.mesh, repaired_target.mesh, on_repaired, clock);
+    result.partial_target = partial;
     result.deformed =
         TriangleMesh{detail::carried_back(repaired_template, template_mesh.V, result.deformed.V),
                      template_mesh.F};

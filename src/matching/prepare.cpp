@@ -9,6 +9,7 @@
 #include "genflow/exceptions.h"
 #include "genflow/operators/area.h"
 #include "genflow/smoothing/smoothing.h"
+#include "matching/partial_target.h"
 #include "matching/similarity_scale.h"
 #include "matching/stopwatch.h"
 
@@ -45,7 +46,8 @@ void steer_by_landmarks(std::vector<Similarity>& starts, const std::vector<Landm
 }
 
 // The rigid starts, best first: the MatchOptions::starts.candidates best distinct rigid
-// fits (with landmarks, those that place them best), or the identity alone without alignment.
+// fits (with landmarks, those that place them best; onto a partial target, the one the facing
+// distance ranks first), or the identity alone without alignment.
 std::vector<Similarity> rigid_starts(const TriangleMesh& template_mesh, const TriangleMesh& target,
                                      const MatchOptions& options) {
     if (!options.starts.enabled) {
@@ -61,10 +63,17 @@ std::vector<Similarity> rigid_starts(const TriangleMesh& template_mesh, const Tr
          rigid_alignment_candidates(template_mesh, target, alignment)) {
         starts.push_back(candidate.transform);
     }
+    const bool partial = matches_partial_target(options);
+    if (partial) {
+        rank_by_facing_distance(starts, template_mesh, target, options);
+    }
     if (!options.landmarks.points.empty()) {
         steer_by_landmarks(starts, options.landmarks.points, template_mesh.V);
     }
-    starts.resize(std::min(starts.size(), static_cast<std::size_t>(options.starts.candidates)));
+    // Onto a partial target the ranking chose: the selection flows' judge, the signatures, would
+    // read the boundary as the shape's.
+    const std::size_t kept = partial ? 1 : static_cast<std::size_t>(options.starts.candidates);
+    starts.resize(std::min(starts.size(), kept));
     return starts;
 }
 

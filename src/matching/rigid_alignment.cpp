@@ -110,7 +110,8 @@ public:
           options_{.alpha = options.alpha,
                    .epsilon = fixed.spacing,
                    .truncation = 1e-4,
-                   .weights = HausdorffWeights::Normalized},
+                   .weights = HausdorffWeights::Normalized,
+                   .moving_coverage = options.moving_coverage},
           scaling_(false),
           stagnation_(options.stagnation_tolerance),
           max_displacement_(max_displacement) {}
@@ -227,9 +228,11 @@ std::vector<RigidAlignment> rigid_alignment_candidates(const TriangleMesh& movin
     }
     if (options.samples < 8 || options.start_iterations < 0 || options.refine_iterations < 0 ||
         options.best_starts < 1 || !detail::finite_at_least(options.alpha, 0.5) ||
-        !detail::finite_at_least(options.stagnation_tolerance, 0)) {
+        !detail::finite_at_least(options.stagnation_tolerance, 0) ||
+        !(options.moving_coverage >= 0 && options.moving_coverage <= 1)) {
         throw InvalidInput(
-            "align_rigidly: need samples >= 8, iterations >= 0, best_starts >= 1, alpha >= 0.5");
+            "align_rigidly: need samples >= 8, iterations >= 0, best_starts >= 1, alpha >= 0.5, "
+            "moving_coverage in [0, 1]");
     }
     const Samples a = cluster(moving, options.samples);
     const Samples b = cluster(fixed, options.samples);

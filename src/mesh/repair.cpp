@@ -279,7 +279,7 @@ std::string RepairedSurface::summary() const {
     return line;
 }
 
-RepairedSurface repair_surface(const TriangleMesh& mesh) {
+RepairedSurface repair_surface(const TriangleMesh& mesh, const RepairOptions& options) {
     detail::require_valid_mesh(mesh, "repair_surface");
     RepairedSurface repaired;
     RepairCounts& counts = repaired.counts;
@@ -303,7 +303,9 @@ RepairedSurface repair_surface(const TriangleMesh& mesh) {
     for (std::size_t v = 0; v < source_vertex.size(); ++v) {
         positions.row(static_cast<Eigen::Index>(v)) = mesh.V.row(source_vertex[v]);
     }
-    faces = largest_component(faces, positions, counts);
+    if (options.largest_component_only) {
+        faces = largest_component(faces, positions, counts);
+    }
     compact(faces, mesh.V, source_vertex, repaired);
     // A welded vertex is carried by the vertex it was welded into.
     for (std::size_t v = 0; v < welded.size(); ++v) {

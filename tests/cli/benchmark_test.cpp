@@ -218,6 +218,7 @@ TEST(BenchmarkCli, MatchesEachPairOntoASingleViewOfItsTarget) {
         EXPECT_GT(share, 0.3) << row;  // about half of a closed surface faces a camera
         EXPECT_LT(share, 0.7) << row;
         EXPECT_TRUE(row["mean_seen"].is_number()) << row;
+        EXPECT_TRUE(row["details"]["partial_target"].get<bool>()) << row;  // found by its boundary
     }
     EXPECT_EQ(summary["all"]["seen"]["pairs"], 2);
     const auto again = run_genflow(command);

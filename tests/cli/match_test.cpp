@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "cli/cli_runner.h"
+#include "genflow/evaluation/single_view.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/write_mesh.h"
 #include "genflow/matching/rigid_alignment.h"
@@ -306,6 +307,31 @@ TEST(MatchCli, TakesAPointCloudTargetAndRefusesABadOneWritingNothing) {
         EXPECT_NE(bad.err.find(says), std::string::npos) << bad.err;
         EXPECT_FALSE(std::filesystem::exists(out));
     }
+}
+
+// One side of the limb is found partial and matched as such, unless the target's extent is
+// given; a bad extent is refused with the option named, and nothing written.
+TEST(MatchCli, MatchesAViewAsAPartialTargetUnlessToldOtherwise) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "template.ply", make_limb(3));
+    write_mesh(directory / "view.ply", single_view(make_limb(3, 5), Eigen::Vector3d(0.2, 0.3, -1)));
+    const auto out = directory / "out.ply";
+    const std::string command = "match " + quoted(directory / "template.ply") + " " +
+                                quoted(directory / "view.ply") + " -o " + quoted(out) +
+                                " --preset paper --levels 1 --iterations 20 --json";
+    for (const auto& [extent, partial] : {std::pair{"", true},
+                                          {" --target-extent partial", true},
+                                          {" --target-extent complete", false}}) {
+        const auto result = run_genflow(command + extent);
+        ASSERT_EQ(result.exit_code, 0) << result.err;
+        EXPECT_EQ(nlohmann::json::parse(result.out)["partial_target"].get<bool>(), partial)
+            << extent;
+    }
+    std::filesystem::remove(out);
+    const auto bad = run_genflow(command + " --target-extent half");
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("--target-extent"), std::string::npos) << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(MatchCli, RefusesBadInputAndWritesNothing) {

@@ -160,6 +160,24 @@ TEST(RepairSurface, SplitsSpheresTouchingAtAVertexAndCarriesTheOtherBack) {
     EXPECT_THROW(static_cast<void>(detail::carried_back(repaired, both.V, both.V)), InvalidInput);
 }
 
+// Asked to, repair keeps every component (a partial scan's pieces): two separate spheres come
+// back whole, and nothing is said to be left out.
+TEST(RepairSurface, KeepsEveryComponentWhenAsked) {
+    const TriangleMesh big = make_icosphere(2);
+    TriangleMesh both = big;
+    const TriangleMesh small = make_icosphere(1, 0.5);
+    both.V.conservativeResize(big.V.rows() + small.V.rows(), 3);
+    both.V.bottomRows(small.V.rows()) = small.V.rowwise() + Eigen::RowVector3d(3, 0, 0);
+    const Eigen::MatrixX3i shifted = small.F.array() + static_cast<int>(big.V.rows());
+    both.F.conservativeResize(big.F.rows() + small.F.rows(), 3);
+    both.F.bottomRows(small.F.rows()) = shifted;
+    const RepairedSurface kept = repair_surface(both, {.largest_component_only = false});
+    EXPECT_FALSE(kept.changed());
+    EXPECT_EQ(kept.mesh.V, both.V);
+    EXPECT_EQ(kept.mesh.F, both.F);
+    EXPECT_EQ(repair_surface(both).counts.components_left_out, 1);
+}
+
 TEST(RepairSurface, RefusesAMeshWithNoProperFace) {
     TriangleMesh flat;
     flat.V = Eigen::MatrixX3d::Identity(3, 3);

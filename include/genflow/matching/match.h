@@ -10,6 +10,7 @@
 
 #include "genflow/flows/flow.h"
 #include "genflow/matching/landmarks.h"
+#include "genflow/matching/partial_target.h"
 #include "genflow/matching/rigid_alignment.h"
 #include "genflow/mesh.h"
 #include "genflow/metrics/quasi_isometric_metric.h"
@@ -223,6 +224,8 @@ struct MatchOptions {
     CounterpartOptions counterparts;
     /// Template vertices whose places on the target the user knows (none by default).
     LandmarkOptions landmarks;
+    /// Whether the target shows all of the template or part of it, and how a part is matched.
+    PartialTargetOptions partial;
     /// Penalties of the quasi-rigid prior.
     QuasiRigidOptions rigid;
     /// The template's parts (required by the articulated prior; joint centres in the template's own
@@ -286,6 +289,9 @@ struct MatchResult {
     Similarity initial_alignment;    ///< the rigid start (identity without `align`)
     std::vector<MatchLevel> levels;  ///< coarsest first
     double hausdorff_energy = 0;     ///< final d_H on the finest level (as MatchLevel's)
+    /// Whether the target was matched as showing only part of the template
+    /// (MatchOptions::partial: given, or found by shows_part_only()).
+    bool partial_target = false;
     /// The landmarks' root-mean-square distance from their points at the end, over the target's
     /// diagonal; nothing without landmarks.
     std::optional<double> landmark_distance;
@@ -380,6 +386,10 @@ struct MatchResult {
 /// describes), then, from the coarsest level to the input, steepest descent with Armijo
 /// backtracking and a displacement cap (gradient_descent()), each level started from the coarser
 /// one by transfer(). ε is the mean edge length of each level's target.
+///
+/// A target that shows only part of the template (MatchOptions::partial; by default found by
+/// shows_part_only()) is matched as PartialTargetOptions describes: one-sided d_H, every
+/// component kept, the template's scale, no intrinsic stages.
 ///
 /// Meshes as they come are matched as repair_surface() makes them (duplicate faces removed,
 /// coincident vertices welded, non-manifold vertices and edges split, the largest component);

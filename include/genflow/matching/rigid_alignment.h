@@ -39,6 +39,10 @@ struct RigidAlignmentOptions {
     /// Allow a uniform scaling, s = √(area of fixed / area of moving): area, unlike size or
     /// principal radii, does not change with the pose of a near-isometric shape.
     bool allow_scaling = true;
+    /// Weight in [0, 1] of the moving mesh's coverage term in d_H
+    /// (PseudoHausdorffOptions::moving_coverage): 0 for a fixed mesh that shows only part of the
+    /// moving one, which then need not be near it everywhere.
+    double moving_coverage = 1;
 };
 
 /// What align_rigidly() found.

@@ -37,6 +37,13 @@ struct RepairedSurface {
     [[nodiscard]] std::string summary() const;
 };
 
+/// Parameters of repair_surface().
+struct RepairOptions {
+    /// Keep only the connected component of largest area (step 5). Off, every component is
+    /// kept: the pieces of a partial scan are all surface that a match must cover.
+    bool largest_component_only = true;
+};
+
 /// The input as one manifold surface, for the algorithms that deform a surface or analyse its
 /// intrinsic geometry (matching). In order:
 /// 1. faces with a repeated vertex are removed (they have no area and no orientation);
@@ -48,9 +55,11 @@ struct RepairedSurface {
 ///    and every vertex whose faces then form several fans is split into one vertex per fan
 ///    (the largest fan keeps it), so that every edge has at most two faces and every vertex
 ///    one fan;
-/// 5. of the connected components, the one with the largest area is kept.
+/// 5. of the connected components, the one with the largest area is kept (unless
+///    RepairOptions::largest_component_only is off).
 /// Orientation is left as it is. A manifold, connected input comes back unchanged.
 /// \throws InvalidInput if the mesh is invalid (validate()) or no face is left.
-[[nodiscard]] RepairedSurface repair_surface(const TriangleMesh& mesh);
+[[nodiscard]] RepairedSurface repair_surface(const TriangleMesh& mesh,
+                                             const RepairOptions& options = {});
 
 }  // namespace genflow

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: MIT
+#include "matching/partial_target.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "genflow/energies/pseudo_hausdorff_energy.h"
+#include "genflow/exceptions.h"
+#include "genflow/matching/multiresolution.h"
+#include "genflow/matching/partial_target.h"
+#include "genflow/operators/area.h"
+#include "genflow/operators/mass_matrix.h"
+#include "genflow/operators/mesh_size.h"
+#include "genflow/operators/normals.h"
+#include "matching/similarity_scale.h"
+#include "operators/triangle.h"
+
+namespace genflow {
+
+const char* to_string(TargetExtent extent) {
+    switch (extent) {
+        case TargetExtent::Automatic:
+            return "auto";
+        case TargetExtent::Complete:
+            return "complete";
+        case TargetExtent::Partial:
+            return "partial";
+    }
+    return "unknown";
+}
+
+std::optional<TargetExtent> parse_target_extent(const std::string& name) {
+    for (const TargetExtent extent :
+         {TargetExtent::Automatic, TargetExtent::Complete, TargetExtent::Partial}) {
+        if (name == to_string(extent)) {
+            return extent;
+        }
+    }
+    return std::nullopt;
+}
+
+namespace {
+
+// A mesh's boundary length over √area: 0 for a closed surface, and the same at any scale.
+double boundary_per_root_area(const TriangleMesh& mesh) {
+    detail::require_valid_mesh(mesh, "shows_part_only");
+    const double area = surface_area(mesh);
+    if (!(area > 0)) {
+        throw InvalidInput("shows_part_only: a mesh has zero area");
+    }
+    return detail::boundary_length(mesh) / std::sqrt(area);
+}
+
+}  // namespace
+
+bool shows_part_only(const TriangleMesh& template_mesh, const TriangleMesh& target) {
+    return boundary_per_root_area(target) - boundary_per_root_area(template_mesh) >
+           detail::kShortBoundary;
+}
+
+namespace detail {
+
+bool matches_partial_target(const MatchOptions& options) {
+    return options.partial.extent == TargetExtent::Partial;
+}
+
+MatchOptions resolved_for_target(const MatchOptions& options, const TriangleMesh& template_mesh,
+                                 const TriangleMesh& target) {
+    MatchOptions resolved = options;
+    if (resolved.partial.extent == TargetExtent::Automatic) {
+        resolved.partial.extent =
+            shows_part_only(template_mesh, target) ? TargetExtent::Partial : TargetExtent::Complete;
+    }
+    if (!matches_partial_target(resolved)) {
+        return resolved;
+    }
+    // Signatures, eigenfunctions and the maps they imply read a boundary as a shape's edge: on
+    // half a surface they guide the template to the wrong places (docs/matching.md).
+    resolved.guided.enabled = false;
+    resolved.second_opinion.enabled = false;
+    resolved.limb_swaps.enabled = false;
+    resolved.refinement.enabled = false;
+    resolved.turn_back.enabled = false;
+    resolved.map_fit.enabled = false;
+    resolved.signatures_reading.enabled = false;
+    resolved.counterparts.enabled = false;
+    // Every target point near the template; the template's scale as it is, since the areas'
+    // ratio is the share the target shows, not a scale.
+    resolved.starts.alignment.moving_coverage = 0;
+    resolved.starts.alignment.allow_scaling = false;
+    return resolved;
+}
+
+double facing_distance(const TriangleMesh& placed_template, const TriangleMesh& target,
+                       const MatchOptions& options) {
+    // The rigid alignment's exponent, low: the bulk of the shape decides, not a limb that moved.
+    const double weight = options.partial.normal_weight * bounding_box_diagonal(target);
+    const PseudoHausdorffOptions distance{.alpha = options.starts.alignment.alpha,
+                                          .epsilon = mean_edge_length(target),
+                                          .truncation = 1e-2,
+                                          .weights = HausdorffWeights::Normalized,
+                                          .moving_coverage = 0};
+    const PointDescriptors facing{weight * vertex_normals(placed_template),
+                                  weight * vertex_normals(target)};
+    return pseudo_hausdorff(placed_template.V,
+                            lumped_masses(placed_template, MassType::Barycentric), target.V,
+                            lumped_masses(target, MassType::Barycentric), distance, facing)
+        .value;
+}
+
+void rank_by_facing_distance(std::vector<Similarity>& starts, const TriangleMesh& template_mesh,
+                             const TriangleMesh& target, const MatchOptions& options) {
+    // At the coarsest level's resolution: the ranking judges the placement of the whole, and on
+    // a scan of 40K points the full sums took minutes.
+    const auto coarse = [&](const TriangleMesh& mesh) {
+        return mesh.V.rows() > options.coarse_vertices ? coarsen(mesh, options.coarse_vertices).mesh
+                                                       : mesh;
+    };
+    const TriangleMesh coarse_template = coarse(template_mesh);
+    const TriangleMesh coarse_target = coarse(target);
+    std::vector<std::pair<double, Similarity>> ranked;
+    for (const Similarity& start : starts) {
+        const TriangleMesh placed{start.apply(coarse_template.V), coarse_template.F};
+        ranked.emplace_back(facing_distance(placed, coarse_target, options), start);
+    }
+    std::stable_sort(ranked.begin(), ranked.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t k = 0; k < starts.size(); ++k) {
+        starts[k] = ranked[k].second;
+    }
+}
+
+}  // namespace detail
+
+}  // namespace genflow
