@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdio>
+#include <numbers>
 #include <vector>
 
 #include "genflow/evaluation/single_view.h"
@@ -19,17 +20,16 @@
 namespace genflow {
 namespace {
 
-constexpr double kDegree = 0.017453292519943295;
-
 // The limb bent at its elbow, and where each vertex of the unbent template belongs on it.
-struct BentLimb {
+struct ViewedLimb {
     TriangleMesh template_mesh = make_limb(3);
     TriangleMesh target = make_limb(4, 9);
     Eigen::MatrixX3d truth;
-    explicit BentLimb(const Similarity& motion = {}) {
-        const std::vector<Joint> bend{{{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * kDegree, 0.4}};
-        target.V = motion.apply(bend_at_joints(target.V, bend));
-        truth = motion.apply(bend_at_joints(template_mesh.V, bend));
+    ViewedLimb() {
+        const std::vector<Joint> bend{
+            {{1.0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 35 * std::numbers::pi / 180, 0.4}};
+        target.V = bend_at_joints(target.V, bend);
+        truth = bend_at_joints(template_mesh.V, bend);
     }
     // Mean distance from the truth over the target's diagonal, of the vertices `seen` marks.
     [[nodiscard]] double error(const Eigen::MatrixX3d& positions,
@@ -47,7 +47,7 @@ struct BentLimb {
 };
 
 // The template vertices whose place on the target faces a camera looking along `view`.
-std::vector<bool> seen_from(const BentLimb& limb, const Eigen::Vector3d& view) {
+std::vector<bool> seen_template_vertices(const ViewedLimb& limb, const Eigen::Vector3d& view) {
     const TriangleMesh placed{limb.truth, limb.template_mesh.F};
     const TriangleMesh seen = single_view(placed, view);
     std::vector<bool> marked(static_cast<std::size_t>(placed.V.rows()), false);
@@ -113,7 +113,7 @@ TEST(PartialTarget, RigidAlignmentOneSidedPlacesTheTemplateOnAView) {
 // its unseen side being pulled onto it, so it keeps its volume and ends nearer the truth, seen
 // and unseen, than matched as a complete target, which flattens it onto the view.
 TEST(PartialTarget, MatchesAViewWithoutPullingTheUnseenSideOntoIt) {
-    const BentLimb limb;
+    const ViewedLimb limb;
     const Eigen::Vector3d camera(0.2, 0.3, -1);
     const TriangleMesh view = single_view(limb.target, camera);
     MatchOptions options = paper_match_options();
@@ -122,7 +122,7 @@ TEST(PartialTarget, MatchesAViewWithoutPullingTheUnseenSideOntoIt) {
     const MatchResult complete = match(limb.template_mesh, view, options);
     EXPECT_TRUE(partial.partial_target);
     EXPECT_FALSE(complete.partial_target);
-    const std::vector<bool> seen = seen_from(limb, camera);
+    const std::vector<bool> seen = seen_template_vertices(limb, camera);
     const std::vector<bool> all(seen.size(), true);
     const double volume = enclosed_volume(limb.template_mesh);
     std::printf("seen %.4f / %.4f, all %.4f / %.4f, volume %.3f / %.3f of the template's\n",
