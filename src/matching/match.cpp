@@ -19,6 +19,7 @@
 #include "matching/finest_bases.h"
 #include "matching/flow_memo.h"
 #include "matching/guided_rounds.h"
+#include "matching/intrinsic_stages.h"
 #include "matching/level_flow.h"
 #include "matching/partial_target.h"
 #include "matching/prepare.h"
@@ -64,16 +65,8 @@ std::optional<MatchPrior> parse_match_prior(const std::string& name) {
 }
 
 MatchOptions paper_match_options() {
-    MatchOptions options;
+    MatchOptions options = detail::without_intrinsic_stages(MatchOptions{});
     options.starts.enabled = false;
-    options.guided.enabled = false;
-    options.second_opinion.enabled = false;
-    options.limb_swaps.enabled = false;
-    options.refinement.enabled = false;
-    options.turn_back.enabled = false;
-    options.map_fit.enabled = false;
-    options.signatures_reading.enabled = false;
-    options.counterparts.enabled = false;
     return options;
 }
 

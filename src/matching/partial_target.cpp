@@ -13,6 +13,7 @@
 #include "genflow/operators/mass_matrix.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/operators/normals.h"
+#include "matching/intrinsic_stages.h"
 #include "matching/similarity_scale.h"
 #include "operators/triangle.h"
 
@@ -77,14 +78,7 @@ MatchOptions resolved_for_target(const MatchOptions& options, const TriangleMesh
     }
     // Signatures, eigenfunctions and the maps they imply read a boundary as a shape's edge: on
     // half a surface they guide the template to the wrong places (docs/matching.md).
-    resolved.guided.enabled = false;
-    resolved.second_opinion.enabled = false;
-    resolved.limb_swaps.enabled = false;
-    resolved.refinement.enabled = false;
-    resolved.turn_back.enabled = false;
-    resolved.map_fit.enabled = false;
-    resolved.signatures_reading.enabled = false;
-    resolved.counterparts.enabled = false;
+    resolved = without_intrinsic_stages(resolved);
     // Every target point near the template; the template's scale as it is, since the areas'
     // ratio is the share the target shows, not a scale.
     resolved.starts.alignment.moving_coverage = 0;
@@ -92,37 +86,63 @@ MatchOptions resolved_for_target(const MatchOptions& options, const TriangleMesh
     return resolved;
 }
 
-double facing_distance(const TriangleMesh& placed_template, const TriangleMesh& target,
-                       const MatchOptions& options) {
-    // The rigid alignment's exponent, low: the bulk of the shape decides, not a limb that moved.
-    const double weight = options.partial.normal_weight * bounding_box_diagonal(target);
-    const PseudoHausdorffOptions distance{.alpha = options.starts.alignment.alpha,
-                                          .epsilon = mean_edge_length(target),
-                                          .truncation = 1e-2,
-                                          .weights = HausdorffWeights::Normalized,
-                                          .moving_coverage = 0};
-    const PointDescriptors facing{weight * vertex_normals(placed_template),
-                                  weight * vertex_normals(target)};
-    return pseudo_hausdorff(placed_template.V,
-                            lumped_masses(placed_template, MassType::Barycentric), target.V,
-                            lumped_masses(target, MassType::Barycentric), distance, facing)
+namespace {
+
+// One side of the facing distance: points with their masses and unit normals.
+struct FacingSide {
+    Eigen::MatrixX3d points;
+    Eigen::VectorXd masses;
+    Eigen::MatrixX3d normals;
+};
+
+FacingSide facing_side(const TriangleMesh& mesh) {
+    return {mesh.V, lumped_masses(mesh, MassType::Barycentric), vertex_normals(mesh)};
+}
+
+// The template's side moved by `start`: a similarity turns the normals with the points, and the
+// normalized masses do not change with its scale.
+FacingSide placed_side(const FacingSide& template_side, const Similarity& start) {
+    return {start.apply(template_side.points), template_side.masses,
+            template_side.normals * start.rotation.transpose()};
+}
+
+// The one-sided d_H from the target to the placed template, its points compared with their
+// normals (PartialTargetOptions::normal_weight): low where the template covers the target facing
+// the same way.
+double facing_distance(const FacingSide& placed, const FacingSide& target,
+                       const PseudoHausdorffOptions& distance, double normal_weight) {
+    const PointDescriptors facing{normal_weight * placed.normals, normal_weight * target.normals};
+    return pseudo_hausdorff(placed.points, placed.masses, target.points, target.masses, distance,
+                            facing)
         .value;
 }
 
+}  // namespace
+
 void rank_by_facing_distance(std::vector<Similarity>& starts, const TriangleMesh& template_mesh,
                              const TriangleMesh& target, const MatchOptions& options) {
-    // At the coarsest level's resolution: the ranking judges the placement of the whole, and on
-    // a scan of 40K points the full sums took minutes.
+    // On copies of about coarse_vertices vertices: the ranking judges the placement of the whole,
+    // and on a scan of 40K points the full sums took minutes.
     const auto coarse = [&](const TriangleMesh& mesh) {
         return mesh.V.rows() > options.coarse_vertices ? coarsen(mesh, options.coarse_vertices).mesh
                                                        : mesh;
     };
-    const TriangleMesh coarse_template = coarse(template_mesh);
     const TriangleMesh coarse_target = coarse(target);
+    const FacingSide template_side = facing_side(coarse(template_mesh));
+    const FacingSide target_side = facing_side(coarse_target);
+    // The rigid alignment's exponent, low: the bulk of the shape decides, not a limb that moved.
+    const PseudoHausdorffOptions distance{.alpha = options.starts.alignment.alpha,
+                                          .epsilon = mean_edge_length(coarse_target),
+                                          .truncation = 1e-2,
+                                          .weights = HausdorffWeights::Normalized,
+                                          .moving_coverage = 0};
+    const double normal_weight =
+        options.partial.normal_weight * bounding_box_diagonal(coarse_target);
     std::vector<std::pair<double, Similarity>> ranked;
     for (const Similarity& start : starts) {
-        const TriangleMesh placed{start.apply(coarse_template.V), coarse_template.F};
-        ranked.emplace_back(facing_distance(placed, coarse_target, options), start);
+        ranked.emplace_back(facing_distance(placed_side(template_side, start), target_side,
+                                            distance, normal_weight),
+                            start);
     }
     std::stable_sort(ranked.begin(), ranked.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });

@@ -19,13 +19,9 @@ namespace genflow::detail {
                                                const TriangleMesh& template_mesh,
                                                const TriangleMesh& target);
 
-/// The one-sided d_H from `target` to `placed_template`, its points compared with their normals
-/// (PartialTargetOptions::normal_weight): low where the template covers the target facing the
-/// same way.
-[[nodiscard]] double facing_distance(const TriangleMesh& placed_template,
-                                     const TriangleMesh& target, const MatchOptions& options);
-
-/// The rigid starts ordered by the facing distance of the template they place; a stable order.
+/// The rigid starts ordered by the facing distance of the template they place: the one-sided
+/// d_H from `target` to it, points compared with their normals (PartialTargetOptions::
+/// normal_weight), low where the template covers the target facing the same way. A stable order.
 void rank_by_facing_distance(std::vector<Similarity>& starts, const TriangleMesh& template_mesh,
                              const TriangleMesh& target, const MatchOptions& options);
 
