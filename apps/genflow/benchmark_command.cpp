@@ -26,6 +26,7 @@
 #include "genflow/evaluation/geodesic_error.h"
 #include "genflow/evaluation/reference_landmarks.h"
 #include "genflow/evaluation/reference_symmetry.h"
+#include "genflow/evaluation/scan_defects.h"
 #include "genflow/evaluation/single_view.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
@@ -49,8 +50,18 @@ namespace {
 struct TargetForm {
     bool points = false;   // its vertices alone, as a point cloud
     bool normals = false;  // the points with the mesh's vertex normals, as a scanner gives them
-    double noise = 0;      // Gaussian noise on the points, σ in the target's mean edge lengths
+    double noise = 0;      // Gaussian noise on the points or vertices, σ in mean edge lengths
     bool view = false;     // only the faces facing a camera (single_view()), from a random side
+    int holes = 0;         // holes punched (ScanDefects::holes)
+    int fragments = 0;     // loose fragments added (ScanDefects::fragments)
+    bool ragged = false;   // a ragged boundary (ScanDefects::ragged_boundary)
+
+    // Whether the target is given as the mesh is, so that the map's points lie on its faces.
+    [[nodiscard]] bool as_is() const {
+        return !points && !view && noise == 0 && holes == 0 && fragments == 0 && !ragged;
+    }
+    // Whether some of the mesh's surface is left out, so that the rows measure the seen part.
+    [[nodiscard]] bool shows_part() const { return view || holes > 0 || ragged; }
 };
 
 struct BenchmarkOptions {
@@ -220,6 +231,20 @@ std::vector<bool> seen_vertices(const TriangleMesh& mesh) {
     return seen;
 }
 
+// The share of `mesh`'s area that `seen` (made of it) still holds: its faces on the mesh's own
+// vertices where they were, not its fragments' nor its noise.
+double seen_area_share(const TriangleMesh& seen, const TriangleMesh& mesh) {
+    TriangleMesh kept{mesh.V, Eigen::MatrixX3i(seen.F.rows(), 3)};
+    Eigen::Index count = 0;
+    for (Eigen::Index f = 0; f < seen.F.rows(); ++f) {
+        if (seen.F.row(f).maxCoeff() < mesh.V.rows()) {
+            kept.F.row(count++) = seen.F.row(f);
+        }
+    }
+    kept.F.conservativeResize(count, 3);
+    return surface_area(kept) / surface_area(mesh);
+}
+
 // A seed of the pair's names (FNV-1a), so that a pair's target is made the same in every run.
 std::uint64_t pair_seed(const Shape& from, const Shape& to) {
     std::uint64_t seed = 14695981039346656037ULL;
@@ -252,10 +277,13 @@ TriangleMesh target_in_form(const Shape& from, const Shape& to, const TargetForm
         return point_cloud_surface(cloud_of(to, form.noise, seed),
                                    form.normals ? vertex_normals(to.mesh) : Eigen::MatrixX3d(0, 3));
     }
-    if (form.view) {
-        return single_view(to.mesh, view_direction(seed));
-    }
-    return to.mesh;
+    const TriangleMesh seen = form.view ? single_view(to.mesh, view_direction(seed)) : to.mesh;
+    const ScanDefects defects{.holes = form.holes,
+                              .fragments = form.fragments,
+                              .ragged_boundary = form.ragged,
+                              .noise = form.noise};
+    // The defects' draw apart from the view's, so that a view is the same with or without them.
+    return with_scan_defects(seen, defects, seed + 1);
 }
 
 // The map of `method` alone, timed by the wall clock: the deformed template's counterparts
@@ -274,13 +302,13 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
     const TriangleMesh matched = target_in_form(from, to, target);
     const MatchResult result = match(from.mesh, matched, options);
     std::vector<SurfacePoint> points = match_correspondence(result, matched);
-    if (target.points || target.view) {
+    if (!target.as_is()) {
         points = closest_points(positions_of(points), to.mesh);
     }
     PairMap map{std::move(points), result.seconds, match_choices(result)};
-    if (target.view) {
+    if (target.shows_part()) {
         map.seen = seen_vertices(matched);
-        map.details["seen_area_share"] = surface_area(matched) / surface_area(to.mesh);
+        map.details["seen_area_share"] = seen_area_share(matched, to.mesh);
         // A template that folds its unseen side onto the view loses its volume.
         const double volume = enclosed_volume(from.mesh);
         map.details["volume_kept"] = volume > 0
@@ -295,6 +323,33 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
         map.other_reading = closest_points(*result.other_reading, to.mesh);
     }
     return map;
+}
+
+// The target forms that can be made together, and only for the matcher.
+void check_target_form(const TargetForm& target, const std::string& method) {
+    if (target.view && target.points) {
+        throw InvalidInput(
+            "--target-view: not with --target-points (a view of a cloud is not made)");
+    }
+    if (target.normals && !target.points) {
+        throw InvalidInput(
+            "--target-normals: normals are given to a point cloud (--target-points)");
+    }
+    if (target.points && (target.holes > 0 || target.fragments > 0 || target.ragged)) {
+        throw InvalidInput(
+            "--target-holes, --target-fragments, --target-ragged: made on a mesh, not with "
+            "--target-points");
+    }
+    if (target.ragged && !target.view && target.holes == 0) {
+        throw InvalidInput(
+            "--target-ragged: needs a boundary to make ragged (--target-view or "
+            "--target-holes)");
+    }
+    if (!target.as_is() && method != "match") {
+        throw InvalidInput(
+            "--target-points, --target-view, --target-noise, --target-holes, --target-fragments, "
+            "--target-ragged: only --method match takes a target in another form");
+    }
 }
 
 // The processor time this process has used, all threads together.
@@ -499,6 +554,30 @@ std::vector<ShapePair> sample_of(const BenchmarkOptions& options, std::size_t sh
         options.shard);
 }
 
+// `count` landmarks of the pair from its ground truth (reference_landmarks()). Onto a target that
+// shows part of the surface, among the reference points it holds: a user clicks what a scan
+// shows.
+std::vector<Landmark> landmarks_of(const Shape& from, const Shape& to, const TargetForm& target,
+                                   int count) {
+    if (!target.shows_part()) {
+        return reference_landmarks(from.mesh, from.reference, to.mesh, to.reference, count);
+    }
+    const std::vector<bool> seen = seen_vertices(target_in_form(from, to, target));
+    std::vector<Eigen::Index> from_seen;
+    std::vector<Eigen::Index> to_seen;
+    for (std::size_t k = 0; k < to.reference.size(); ++k) {
+        if (seen[static_cast<std::size_t>(to.reference[k])]) {
+            from_seen.push_back(from.reference[k]);
+            to_seen.push_back(to.reference[k]);
+        }
+    }
+    if (from_seen.empty()) {
+        return {};
+    }
+    return reference_landmarks(from.mesh, from_seen, to.mesh, to_seen,
+                               std::min(count, static_cast<int>(from_seen.size())));
+}
+
 // One pair's row: read back from --output-dir with --resume, else mapped, measured and kept
 // there. A solver failure is a row too ("failed"), and the benchmark goes on.
 nlohmann::json row_of(const BenchmarkOptions& options, const Shape& from, const Shape& to,
@@ -512,8 +591,7 @@ nlohmann::json row_of(const BenchmarkOptions& options, const Shape& from, const 
     }
     MatchOptions pair_options = match_options;
     if (options.landmarks > 0) {
-        pair_options.landmarks.points = reference_landmarks(from.mesh, from.reference, to.mesh,
-                                                            to.reference, options.landmarks);
+        pair_options.landmarks.points = landmarks_of(from, to, options.target, options.landmarks);
     }
     nlohmann::json row;
     try {
@@ -523,6 +601,9 @@ nlohmann::json row_of(const BenchmarkOptions& options, const Shape& from, const 
     } catch (const SolverError& e) {
         row = {
             {"from", from.name}, {"to", to.name}, {"within_subject", within}, {"failed", e.what()}};
+    }
+    if (options.landmarks > 0) {
+        row["landmarks_given"] = pair_options.landmarks.points.size();
     }
     if (!output_dir.empty() && !row.contains("failed")) {
         write_file_atomically(pair_file(output_dir, from, to), row.dump() + "\n");
@@ -571,6 +652,9 @@ nlohmann::json summary_json(const BenchmarkOptions& options, std::size_t shapes,
             {"target_normals", options.target.normals},
             {"target_noise", options.target.noise},
             {"target_view", options.target.view},
+            {"target_holes", options.target.holes},
+            {"target_fragments", options.target.fragments},
+            {"target_ragged", options.target.ragged},
             {"geodesics", "shortest paths along the edges (Dijkstra)"},
             {"unit", "sqrt(area) of the target"},
             {"pck_step", kPckStep},
@@ -632,20 +716,7 @@ void run_benchmark(const BenchmarkOptions& options) {
                            " asked, the shapes have " +
                            std::to_string(shapes.front().reference.size()) + " reference points");
     }
-    if (options.target.points && options.method != "match") {
-        throw InvalidInput("--target-points: only --method match takes a point cloud");
-    }
-    if (options.target.view && options.target.points) {
-        throw InvalidInput(
-            "--target-view: not with --target-points (a view of a cloud is not made)");
-    }
-    if (options.target.normals && !options.target.points) {
-        throw InvalidInput(
-            "--target-normals: normals are given to a point cloud (--target-points)");
-    }
-    if (options.target.noise > 0 && !options.target.points) {
-        throw InvalidInput("--target-noise: noise is added to a point cloud (--target-points)");
-    }
+    check_target_form(options.target, options.method);
     const std::vector<ShapePair> pairs = sample_of(options, shapes.size());
     const ReferenceSymmetry symmetry = symmetry_of(shapes);
     const MatchOptions match_options = resolved(options.flags, false);
@@ -716,7 +787,8 @@ void register_benchmark_command(CLI::App& app) {
     command
         ->add_option("--landmarks", options->landmarks,
                      "Give each pair's match this many landmarks from the ground truth: reference "
-                     "points spread over the template, as a user would click them")
+                     "points spread over the template, as a user would click them (onto a view "
+                     "or a holed target, among the points it holds)")
         ->check(CLI::NonNegativeNumber);
     command->add_flag("--target-points", options->target.points,
                       "Give each pair's match its target as a point cloud, its vertices alone "
@@ -730,9 +802,23 @@ void register_benchmark_command(CLI::App& app) {
                       "vertex normals), as a scanner gives them");
     command
         ->add_option("--target-noise", options->target.noise,
-                     "Move each point of --target-points by Gaussian noise of this σ, in mean "
-                     "edge lengths of the target (the same draw for a pair in every run)")
+                     "Move each point of --target-points, or else each vertex of the target, by "
+                     "Gaussian noise of this σ, in mean edge lengths of the target (the same draw "
+                     "for a pair in every run)")
         ->check(CLI::NonNegativeNumber);
+    command
+        ->add_option("--target-holes", options->target.holes,
+                     "Punch this many holes (discs of 0.03 diagonals) into each pair's target, "
+                     "or into its view; the rows add mean_seen")
+        ->check(CLI::Range(0, 1000));
+    command
+        ->add_option("--target-fragments", options->target.fragments,
+                     "Add this many loose fragments (discs of 0.02 diagonals copied off the "
+                     "surface) to each pair's target, as the stray pieces of a scan")
+        ->check(CLI::Range(0, 1000));
+    command->add_flag("--target-ragged", options->target.ragged,
+                      "Make the target's boundary ragged (each face at it dropped with probability "
+                      "1/2), as a scan's edge; with --target-view or --target-holes");
     command->add_flag("--json", options->json, "Print the summary as JSON instead of tables");
     command
         ->add_option("--method", options->method,

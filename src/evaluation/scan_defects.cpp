@@ -1,0 +1,168 @@
+// SPDX-License-Identifier: MIT
+#include "genflow/evaluation/scan_defects.h"
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "genflow/exceptions.h"
+#include "genflow/mesh/edges.h"
+#include "genflow/operators/area.h"
+#include "genflow/operators/mesh_size.h"
+#include "operators/triangle.h"
+
+namespace genflow {
+
+namespace {
+
+void check_defects(const ScanDefects& defects) {
+    const bool counts_valid = defects.holes >= 0 && defects.fragments >= 0;
+    const bool lengths_valid = detail::finite_at_least(defects.hole_radius, 0) &&
+                               detail::finite_at_least(defects.fragment_radius, 0) &&
+                               detail::finite_at_least(defects.noise, 0);
+    if (!counts_valid || !lengths_valid) {
+        throw InvalidInput(
+            "with_scan_defects: counts, radii and noise must be finite and non-negative");
+    }
+}
+
+Eigen::RowVector3d centroid(const TriangleMesh& mesh, Eigen::Index face) {
+    return (mesh.V.row(mesh.F(face, 0)) + mesh.V.row(mesh.F(face, 1)) +
+            mesh.V.row(mesh.F(face, 2))) /
+           3;
+}
+
+// Faces drawn in proportion to their area: their centroids spread uniformly over the surface.
+Eigen::Index area_uniform_face(const Eigen::VectorXd& areas, std::mt19937_64& random) {
+    std::discrete_distribution<Eigen::Index> pick(areas.data(), areas.data() + areas.size());
+    return pick(random);
+}
+
+// The faces whose centroid lies within `radius` of `centre`.
+std::vector<Eigen::Index> faces_near(const TriangleMesh& mesh, const Eigen::RowVector3d& centre,
+                                     double radius) {
+    std::vector<Eigen::Index> near;
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        if ((centroid(mesh, f) - centre).norm() <= radius) {
+            near.push_back(f);
+        }
+    }
+    return near;
+}
+
+TriangleMesh without_faces(const TriangleMesh& mesh, const std::vector<bool>& dropped) {
+    TriangleMesh kept{mesh.V, Eigen::MatrixX3i(mesh.F.rows(), 3)};
+    Eigen::Index count = 0;
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        if (!dropped[static_cast<std::size_t>(f)]) {
+            kept.F.row(count++) = mesh.F.row(f);
+        }
+    }
+    kept.F.conservativeResize(count, 3);
+    return kept;
+}
+
+TriangleMesh with_holes(const TriangleMesh& mesh, int holes, double radius,
+                        std::mt19937_64& random) {
+    if (holes == 0 || mesh.F.rows() == 0) {
+        return mesh;
+    }
+    const Eigen::VectorXd areas = face_areas(mesh);
+    if (!(areas.sum() > 0)) {
+        return mesh;
+    }
+    std::vector<bool> dropped(static_cast<std::size_t>(mesh.F.rows()), false);
+    for (int h = 0; h < holes; ++h) {
+        const Eigen::RowVector3d centre = centroid(mesh, area_uniform_face(areas, random));
+        for (const Eigen::Index f : faces_near(mesh, centre, radius)) {
+            dropped[static_cast<std::size_t>(f)] = true;
+        }
+    }
+    return without_faces(mesh, dropped);
+}
+
+TriangleMesh with_ragged_boundary(const TriangleMesh& mesh, std::mt19937_64& random) {
+    const std::vector<bool> on_boundary = boundary_vertices(mesh.F, mesh.V.rows());
+    std::bernoulli_distribution coin(0.5);
+    std::vector<bool> dropped(static_cast<std::size_t>(mesh.F.rows()), false);
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        bool at_boundary = false;
+        for (int c = 0; c < 3; ++c) {
+            at_boundary = at_boundary || on_boundary[static_cast<std::size_t>(mesh.F(f, c))];
+        }
+        dropped[static_cast<std::size_t>(f)] = at_boundary && coin(random);
+    }
+    return without_faces(mesh, dropped);
+}
+
+// A fragment lies one to three fragment diameters off where it was copied: near the subject,
+// yet apart from it, as stray pieces are.
+TriangleMesh with_fragments(const TriangleMesh& mesh, int fragments, double radius,
+                            std::mt19937_64& random) {
+    if (fragments == 0 || mesh.F.rows() == 0) {
+        return mesh;
+    }
+    const Eigen::VectorXd areas = face_areas(mesh);
+    if (!(areas.sum() > 0)) {
+        return mesh;
+    }
+    std::normal_distribution<double> normal;
+    std::uniform_real_distribution<double> offset(2 * radius, 6 * radius);
+    TriangleMesh result = mesh;
+    for (int k = 0; k < fragments; ++k) {
+        const Eigen::RowVector3d centre = centroid(mesh, area_uniform_face(areas, random));
+        const Eigen::RowVector3d direction =
+            Eigen::RowVector3d(normal(random), normal(random), normal(random)).normalized();
+        const Eigen::RowVector3d shift = offset(random) * direction;
+        const std::vector<Eigen::Index> faces = faces_near(mesh, centre, radius);
+        std::vector<Eigen::Index> copy_of(static_cast<std::size_t>(mesh.V.rows()), -1);
+        Eigen::Index vertices = result.V.rows();
+        Eigen::Index face_count = result.F.rows();
+        result.F.conservativeResize(face_count + static_cast<Eigen::Index>(faces.size()), 3);
+        for (const Eigen::Index f : faces) {
+            for (int c = 0; c < 3; ++c) {
+                Eigen::Index& copy = copy_of[static_cast<std::size_t>(mesh.F(f, c))];
+                if (copy < 0) {
+                    copy = vertices++;
+                    result.V.conservativeResize(vertices, 3);
+                    result.V.row(copy) = mesh.V.row(mesh.F(f, c)) + shift;
+                }
+                result.F(face_count, c) = static_cast<int>(copy);
+            }
+            ++face_count;
+        }
+    }
+    return result;
+}
+
+void add_noise(TriangleMesh& mesh, double sigma, std::mt19937_64& random) {
+    std::normal_distribution<double> normal(0, sigma);
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            mesh.V(i, c) += normal(random);
+        }
+    }
+}
+
+}  // namespace
+
+TriangleMesh with_scan_defects(const TriangleMesh& mesh, const ScanDefects& defects,
+                               std::uint64_t seed) {
+    detail::require_valid_mesh(mesh, "with_scan_defects");
+    check_defects(defects);
+    const double diagonal = bounding_box_diagonal(mesh);
+    const double edge = mesh.F.rows() > 0 ? mean_edge_length(mesh) : 0;
+    std::mt19937_64 random(seed);
+    TriangleMesh result = with_holes(mesh, defects.holes, defects.hole_radius * diagonal, random);
+    if (defects.ragged_boundary) {
+        result = with_ragged_boundary(result, random);
+    }
+    result = with_fragments(result, defects.fragments, defects.fragment_radius * diagonal, random);
+    if (defects.noise > 0) {
+        add_noise(result, defects.noise * edge, random);
+    }
+    return result;
+}
+
+}  // namespace genflow
