@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <vector>
 
 #include "genflow/mesh/primitives.h"
 
@@ -58,6 +59,29 @@ TEST(Edges, BoundaryEdgesOfAGridTwoTrianglesAndAClosedMesh) {
     expected << 0, 1, 0, 2, 1, 3, 2, 3;
     EXPECT_EQ(boundary_edges(F), expected);
     EXPECT_EQ(boundary_edges(make_icosphere(2).F).rows(), 0);
+}
+
+// The same edges as their faces run them: the grid's faces point to +z, so its rim runs
+// counter-clockwise seen from above, each vertex left once and entered once.
+TEST(Edges, OrientedBoundaryEdgesRunAsTheirFaces) {
+    const TriangleMesh grid = make_grid(4);
+    const Eigen::MatrixX2i oriented = oriented_boundary_edges(grid.F);
+    const Eigen::MatrixX2i edges = boundary_edges(grid.F);
+    ASSERT_EQ(oriented.rows(), edges.rows());
+    std::vector<int> out(static_cast<std::size_t>(grid.V.rows()), 0);
+    std::vector<int> in(static_cast<std::size_t>(grid.V.rows()), 0);
+    const Eigen::RowVector3d centre(0.5, 0.5, 0);
+    for (Eigen::Index e = 0; e < oriented.rows(); ++e) {
+        EXPECT_EQ(std::minmax(oriented(e, 0), oriented(e, 1)),
+                  std::minmax(edges(e, 0), edges(e, 1)));
+        const Eigen::RowVector3d a = grid.V.row(oriented(e, 0)) - centre;
+        const Eigen::RowVector3d b = grid.V.row(oriented(e, 1)) - centre;
+        EXPECT_GT(a.x() * b.y() - a.y() * b.x(), 0);  // counter-clockwise about the centre
+        ++out[static_cast<std::size_t>(oriented(e, 0))];
+        ++in[static_cast<std::size_t>(oriented(e, 1))];
+    }
+    EXPECT_EQ(out, in);
+    EXPECT_EQ(oriented_boundary_edges(make_icosphere(2).F).rows(), 0);
 }
 
 // Each vertex of a 4×4 grid has as many neighbours as edges at it (2 to 6), each edge seen

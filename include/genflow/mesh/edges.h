@@ -15,6 +15,10 @@ namespace genflow {
 /// unique_edges()); none for a closed mesh.
 [[nodiscard]] Eigen::MatrixX2i boundary_edges(const Eigen::MatrixX3i& F);
 
+/// The edges of boundary_edges(), each as its one face runs it (rows (from, to)), in the same
+/// order: around a hole of an oriented surface they chain into loops.
+[[nodiscard]] Eigen::MatrixX2i oriented_boundary_edges(const Eigen::MatrixX3i& F);
+
 /// One flag per vertex (size `num_vertices`): true for the vertices of boundary edges, the
 /// edges used by exactly one face. Indices must lie in [0, num_vertices).
 [[nodiscard]] std::vector<bool> boundary_vertices(const Eigen::MatrixX3i& F,
