@@ -10,11 +10,11 @@
 #include "genflow/matching/multiresolution.h"
 #include "genflow/matching/partial_target.h"
 #include "genflow/operators/area.h"
+#include "genflow/operators/hole_area.h"
 #include "genflow/operators/mass_matrix.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/operators/normals.h"
 #include "matching/intrinsic_stages.h"
-#include "matching/similarity_scale.h"
 #include "operators/triangle.h"
 
 namespace genflow {
@@ -43,21 +43,27 @@ std::optional<TargetExtent> parse_target_extent(const std::string& name) {
 
 namespace {
 
-// A mesh's boundary length over √area: 0 for a closed surface, and the same at any scale.
-double boundary_per_root_area(const TriangleMesh& mesh) {
+// The target is partial when its holes take more than this share of its closed surface beyond
+// the template's: between the 0.10 that twenty palm-sized holes in a body measured at most and
+// the 0.27 of a single view from above, the flattest measured (docs/benchmarks.md).
+constexpr double kPartialHoleShare = 0.2;
+
+// The share of a mesh's closed surface its holes take: 0 for a closed mesh, the same at any
+// scale.
+double hole_share(const TriangleMesh& mesh) {
     detail::require_valid_mesh(mesh, "shows_part_only");
     const double area = surface_area(mesh);
     if (!(area > 0)) {
         throw InvalidInput("shows_part_only: a mesh has zero area");
     }
-    return detail::boundary_length(mesh) / std::sqrt(area);
+    const double holes = hole_area(mesh);
+    return holes / (area + holes);
 }
 
 }  // namespace
 
 bool shows_part_only(const TriangleMesh& template_mesh, const TriangleMesh& target) {
-    return boundary_per_root_area(target) - boundary_per_root_area(template_mesh) >
-           detail::kShortBoundary;
+    return hole_share(target) - hole_share(template_mesh) > kPartialHoleShare;
 }
 
 namespace detail {
