@@ -45,7 +45,8 @@ TEST(ScanDefects, HolesDropDiscsOfFacesAndKeepTheVertices) {
     EXPECT_LT(lost, 3 * 1.3 * M_PI * radius * radius);
     EXPECT_GT(boundary_edges(holed.F).rows(), 0);
     EXPECT_EQ(with_scan_defects(sphere, defects, 5).F, holed.F);
-    EXPECT_NE(with_scan_defects(sphere, defects, 6).F, holed.F);
+    const TriangleMesh other = with_scan_defects(sphere, defects, 6);
+    EXPECT_TRUE(other.F.rows() != holed.F.rows() || other.F != holed.F);
     EXPECT_EQ(with_scan_defects(sphere, ScanDefects{}, 5).F, sphere.F);
 }
 
