@@ -35,6 +35,7 @@
 #include "genflow/io/write_correspondences.h"
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/spectral_map.h"
+#include "genflow/mesh/face_selection.h"
 #include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/operators/normals.h"
@@ -218,30 +219,15 @@ struct PairMap {
     double processor_seconds = 0;  // of the whole process: with one thread a pair, the pair's
     // Per target vertex, whether the target as given holds it (a single view); empty: all.
     std::vector<bool> seen = {};
+    std::optional<std::size_t> landmarks_given = {};  // of the pair, where landmarks were asked
 };
-
-// Per vertex, whether a face uses it.
-std::vector<bool> seen_vertices(const TriangleMesh& mesh) {
-    std::vector<bool> seen(static_cast<std::size_t>(mesh.V.rows()), false);
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-        for (int c = 0; c < 3; ++c) {
-            seen[static_cast<std::size_t>(mesh.F(f, c))] = true;
-        }
-    }
-    return seen;
-}
 
 // The share of `mesh`'s area that `seen` (made of it) still holds: its faces on the mesh's own
 // vertices where they were, not its fragments' nor its noise.
 double seen_area_share(const TriangleMesh& seen, const TriangleMesh& mesh) {
-    TriangleMesh kept{mesh.V, Eigen::MatrixX3i(seen.F.rows(), 3)};
-    Eigen::Index count = 0;
-    for (Eigen::Index f = 0; f < seen.F.rows(); ++f) {
-        if (seen.F.row(f).maxCoeff() < mesh.V.rows()) {
-            kept.F.row(count++) = seen.F.row(f);
-        }
-    }
-    kept.F.conservativeResize(count, 3);
+    const TriangleMesh kept{mesh.V, faces_where(seen.F, [&](Eigen::Index f) {
+                                return seen.F.row(f).maxCoeff() < mesh.V.rows();
+                            })};
     return surface_area(kept) / surface_area(mesh);
 }
 
@@ -289,7 +275,8 @@ TriangleMesh target_in_form(const Shape& from, const Shape& to, const TargetForm
 // The map of `method` alone, timed by the wall clock: the deformed template's counterparts
 // ("match"), or the intrinsic vertex map alone ("spectral-map", spectral_map()).
 PairMap map_of_method(const std::string& method, const Shape& from, const Shape& to,
-                      const MatchOptions& options, const TargetForm& target) {
+                      const MatchOptions& options, const TargetForm& target,
+                      const TriangleMesh& matched) {
     if (method == "spectral-map") {
         const auto start = std::chrono::steady_clock::now();
         const SpectralMap map = spectral_map(from.mesh, to.mesh);
@@ -299,7 +286,6 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
     }
     // A target in another form is matched as it is given; the map's points are then measured
     // on the target mesh, where they lie nearest.
-    const TriangleMesh matched = target_in_form(from, to, target);
     const MatchResult result = match(from.mesh, matched, options);
     std::vector<SurfacePoint> points = match_correspondence(result, matched);
     if (!target.as_is()) {
@@ -307,7 +293,7 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
     }
     PairMap map{std::move(points), result.seconds, match_choices(result)};
     if (target.shows_part()) {
-        map.seen = seen_vertices(matched);
+        map.seen = vertices_on_faces(matched.F, matched.V.rows());
         map.details["seen_area_share"] = seen_area_share(matched, to.mesh);
         // A template that folds its unseen side onto the view loses its volume.
         const double volume = enclosed_volume(from.mesh);
@@ -357,13 +343,46 @@ double processor_seconds() {
     return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
-// The map of `method`, timed by the processor clock too: a benchmark shares its machine, and
+// `count` landmarks of the pair from its ground truth (reference_landmarks()). Onto a target that
+// shows part of the surface, among the reference points it holds: a user clicks what a scan
+// shows.
+std::vector<Landmark> landmarks_of(const Shape& from, const Shape& to, const TargetForm& form,
+                                   const TriangleMesh& target, int count) {
+    if (!form.shows_part()) {
+        return reference_landmarks(from.mesh, from.reference, to.mesh, to.reference, count);
+    }
+    const std::vector<bool> seen = vertices_on_faces(target.F, target.V.rows());
+    std::vector<Eigen::Index> from_seen;
+    std::vector<Eigen::Index> to_seen;
+    for (std::size_t k = 0; k < to.reference.size(); ++k) {
+        if (seen[static_cast<std::size_t>(to.reference[k])]) {
+            from_seen.push_back(from.reference[k]);
+            to_seen.push_back(to.reference[k]);
+        }
+    }
+    if (from_seen.empty()) {
+        return {};
+    }
+    return reference_landmarks(from.mesh, from_seen, to.mesh, to_seen,
+                               std::min(count, static_cast<int>(from_seen.size())));
+}
+
+// The map of `method` onto the target in `form`, with `landmarks` of the pair given
+// (landmarks_of()), timed by the processor clock too: a benchmark shares its machine, and
 // processor time does not grow while the pair waits for a core.
 PairMap map_of(const std::string& method, const Shape& from, const Shape& to,
-               const MatchOptions& options, const TargetForm& target) {
+               const MatchOptions& options, const TargetForm& form, int landmarks) {
     const double processor_start = processor_seconds();
-    PairMap map = map_of_method(method, from, to, options, target);
+    const TriangleMesh target = target_in_form(from, to, form);
+    MatchOptions pair_options = options;
+    if (landmarks > 0) {
+        pair_options.landmarks.points = landmarks_of(from, to, form, target, landmarks);
+    }
+    PairMap map = map_of_method(method, from, to, pair_options, form, target);
     map.processor_seconds = processor_seconds() - processor_start;
+    if (landmarks > 0) {
+        map.landmarks_given = pair_options.landmarks.points.size();
+    }
     return map;
 }
 
@@ -371,9 +390,9 @@ PairMap map_of(const std::string& method, const Shape& from, const Shape& to,
 // (write_correspondences()) unless it is empty.
 nlohmann::json run_pair(const Shape& from, const Shape& to, bool within,
                         const ReferenceSymmetry& symmetry, const std::string& method,
-                        const TargetForm& target, const MatchOptions& options,
+                        const TargetForm& target, const MatchOptions& options, int landmarks,
                         const std::filesystem::path& map_file) {
-    const PairMap result = map_of(method, from, to, options, target);
+    const PairMap result = map_of(method, from, to, options, target, landmarks);
     const std::vector<SurfacePoint>& map = result.points;
     if (!map_file.empty()) {
         write_correspondences(map_file, map);
@@ -391,6 +410,9 @@ nlohmann::json run_pair(const Shape& from, const Shape& to, bool within,
                           {"details", result.details}};
     if (!result.seen.empty()) {
         row["mean_seen"] = mean_where_seen(errors.to_vertex, to.reference, result.seen);
+    }
+    if (result.landmarks_given) {
+        row["landmarks_given"] = *result.landmarks_given;
     }
     if (!result.closest.empty()) {
         row["mean_closest_points"] =
@@ -554,30 +576,6 @@ std::vector<ShapePair> sample_of(const BenchmarkOptions& options, std::size_t sh
         options.shard);
 }
 
-// `count` landmarks of the pair from its ground truth (reference_landmarks()). Onto a target that
-// shows part of the surface, among the reference points it holds: a user clicks what a scan
-// shows.
-std::vector<Landmark> landmarks_of(const Shape& from, const Shape& to, const TargetForm& target,
-                                   int count) {
-    if (!target.shows_part()) {
-        return reference_landmarks(from.mesh, from.reference, to.mesh, to.reference, count);
-    }
-    const std::vector<bool> seen = seen_vertices(target_in_form(from, to, target));
-    std::vector<Eigen::Index> from_seen;
-    std::vector<Eigen::Index> to_seen;
-    for (std::size_t k = 0; k < to.reference.size(); ++k) {
-        if (seen[static_cast<std::size_t>(to.reference[k])]) {
-            from_seen.push_back(from.reference[k]);
-            to_seen.push_back(to.reference[k]);
-        }
-    }
-    if (from_seen.empty()) {
-        return {};
-    }
-    return reference_landmarks(from.mesh, from_seen, to.mesh, to_seen,
-                               std::min(count, static_cast<int>(from_seen.size())));
-}
-
 // One pair's row: read back from --output-dir with --resume, else mapped, measured and kept
 // there. A solver failure is a row too ("failed"), and the benchmark goes on.
 nlohmann::json row_of(const BenchmarkOptions& options, const Shape& from, const Shape& to,
@@ -589,21 +587,15 @@ nlohmann::json row_of(const BenchmarkOptions& options, const Shape& from, const 
             return *row;
         }
     }
-    MatchOptions pair_options = match_options;
-    if (options.landmarks > 0) {
-        pair_options.landmarks.points = landmarks_of(from, to, options.target, options.landmarks);
-    }
     nlohmann::json row;
     try {
-        row = run_pair(from, to, within, symmetry, options.method, options.target, pair_options,
+        row = run_pair(from, to, within, symmetry, options.method, options.target, match_options,
+                       options.landmarks,
                        output_dir.empty() ? std::filesystem::path()
                                           : pair_file(output_dir, from, to, ".map.txt"));
     } catch (const SolverError& e) {
         row = {
             {"from", from.name}, {"to", to.name}, {"within_subject", within}, {"failed", e.what()}};
-    }
-    if (options.landmarks > 0) {
-        row["landmarks_given"] = pair_options.landmarks.points.size();
     }
     if (!output_dir.empty() && !row.contains("failed")) {
         write_file_atomically(pair_file(output_dir, from, to), row.dump() + "\n");

@@ -2,12 +2,14 @@
 #include "genflow/evaluation/scan_defects.h"
 
 #include <cmath>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "genflow/exceptions.h"
 #include "genflow/mesh/edges.h"
+#include "genflow/mesh/face_selection.h"
 #include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
 #include "operators/triangle.h"
@@ -33,11 +35,30 @@ Eigen::RowVector3d centroid(const TriangleMesh& mesh, Eigen::Index face) {
            3;
 }
 
-// Faces drawn in proportion to their area: their centroids spread uniformly over the surface.
-Eigen::Index area_uniform_face(const Eigen::VectorXd& areas, std::mt19937_64& random) {
-    std::discrete_distribution<Eigen::Index> pick(areas.data(), areas.data() + areas.size());
-    return pick(random);
-}
+// Points spread uniformly over the surface: the centroids of faces drawn in proportion to
+// their area. None on a mesh without area.
+class AreaUniformCentres {
+public:
+    explicit AreaUniformCentres(const TriangleMesh& mesh) : mesh_(mesh) {
+        if (mesh.F.rows() > 0) {
+            const Eigen::VectorXd areas = face_areas(mesh);
+            if (areas.sum() > 0) {
+                pick_ = std::discrete_distribution<Eigen::Index>(areas.data(),
+                                                                 areas.data() + areas.size());
+            }
+        }
+    }
+
+    [[nodiscard]] bool empty() const { return !pick_; }
+
+    Eigen::RowVector3d operator()(std::mt19937_64& random) {
+        return centroid(mesh_, (*pick_)(random));
+    }
+
+private:
+    const TriangleMesh& mesh_;
+    std::optional<std::discrete_distribution<Eigen::Index>> pick_;
+};
 
 // The faces whose centroid lies within `radius` of `centre`.
 std::vector<Eigen::Index> faces_near(const TriangleMesh& mesh, const Eigen::RowVector3d& centre,
@@ -52,30 +73,20 @@ std::vector<Eigen::Index> faces_near(const TriangleMesh& mesh, const Eigen::RowV
 }
 
 TriangleMesh without_faces(const TriangleMesh& mesh, const std::vector<bool>& dropped) {
-    TriangleMesh kept{mesh.V, Eigen::MatrixX3i(mesh.F.rows(), 3)};
-    Eigen::Index count = 0;
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-        if (!dropped[static_cast<std::size_t>(f)]) {
-            kept.F.row(count++) = mesh.F.row(f);
-        }
-    }
-    kept.F.conservativeResize(count, 3);
-    return kept;
+    return {mesh.V, faces_where(mesh.F, [&](Eigen::Index f) {
+                return !dropped[static_cast<std::size_t>(f)];
+            })};
 }
 
 TriangleMesh with_holes(const TriangleMesh& mesh, int holes, double radius,
                         std::mt19937_64& random) {
-    if (holes == 0 || mesh.F.rows() == 0) {
-        return mesh;
-    }
-    const Eigen::VectorXd areas = face_areas(mesh);
-    if (!(areas.sum() > 0)) {
+    AreaUniformCentres centre_of_hole(mesh);
+    if (holes == 0 || centre_of_hole.empty()) {
         return mesh;
     }
     std::vector<bool> dropped(static_cast<std::size_t>(mesh.F.rows()), false);
     for (int h = 0; h < holes; ++h) {
-        const Eigen::RowVector3d centre = centroid(mesh, area_uniform_face(areas, random));
-        for (const Eigen::Index f : faces_near(mesh, centre, radius)) {
+        for (const Eigen::Index f : faces_near(mesh, centre_of_hole(random), radius)) {
             dropped[static_cast<std::size_t>(f)] = true;
         }
     }
@@ -100,18 +111,15 @@ TriangleMesh with_ragged_boundary(const TriangleMesh& mesh, std::mt19937_64& ran
 // yet apart from it, as stray pieces are.
 TriangleMesh with_fragments(const TriangleMesh& mesh, int fragments, double radius,
                             std::mt19937_64& random) {
-    if (fragments == 0 || mesh.F.rows() == 0) {
-        return mesh;
-    }
-    const Eigen::VectorXd areas = face_areas(mesh);
-    if (!(areas.sum() > 0)) {
+    AreaUniformCentres centre_of_fragment(mesh);
+    if (fragments == 0 || centre_of_fragment.empty()) {
         return mesh;
     }
     std::normal_distribution<double> normal;
     std::uniform_real_distribution<double> offset(2 * radius, 6 * radius);
     TriangleMesh result = mesh;
     for (int k = 0; k < fragments; ++k) {
-        const Eigen::RowVector3d centre = centroid(mesh, area_uniform_face(areas, random));
+        const Eigen::RowVector3d centre = centre_of_fragment(random);
         const Eigen::RowVector3d direction =
             Eigen::RowVector3d(normal(random), normal(random), normal(random)).normalized();
         const Eigen::RowVector3d shift = offset(random) * direction;

@@ -3,9 +3,9 @@
 
 #include <cmath>
 #include <random>
-#include <vector>
 
 #include "genflow/exceptions.h"
+#include "genflow/mesh/face_selection.h"
 #include "genflow/operators/normals.h"
 #include "operators/triangle.h"
 
@@ -17,17 +17,7 @@ TriangleMesh single_view(const TriangleMesh& mesh, const Eigen::Vector3d& view) 
         throw InvalidInput("single_view: the view direction must be finite and non-zero");
     }
     const Eigen::VectorXd facing = face_normals(mesh) * view;
-    std::vector<Eigen::Index> kept;
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-        if (facing[f] < 0) {
-            kept.push_back(f);
-        }
-    }
-    TriangleMesh seen{mesh.V, Eigen::MatrixX3i(static_cast<Eigen::Index>(kept.size()), 3)};
-    for (std::size_t k = 0; k < kept.size(); ++k) {
-        seen.F.row(static_cast<Eigen::Index>(k)) = mesh.F.row(kept[k]);
-    }
-    return seen;
+    return {mesh.V, faces_where(mesh.F, [&](Eigen::Index f) { return facing[f] < 0; })};
 }
 
 Eigen::Vector3d view_direction(std::uint64_t seed) {

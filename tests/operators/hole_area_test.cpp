@@ -8,6 +8,7 @@
 
 #include "genflow/exceptions.h"
 #include "genflow/mesh/edges.h"
+#include "genflow/mesh/face_selection.h"
 #include "genflow/mesh/primitives.h"
 
 namespace genflow {
@@ -16,17 +17,11 @@ namespace {
 // `mesh` without the faces whose centroid `drop` is true for.
 template <typename Drop>
 TriangleMesh without(const TriangleMesh& mesh, Drop drop) {
-    TriangleMesh kept{mesh.V, Eigen::MatrixX3i(mesh.F.rows(), 3)};
-    Eigen::Index count = 0;
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-        const Eigen::RowVector3d centroid =
-            (mesh.V.row(mesh.F(f, 0)) + mesh.V.row(mesh.F(f, 1)) + mesh.V.row(mesh.F(f, 2))) / 3;
-        if (!drop(centroid)) {
-            kept.F.row(count++) = mesh.F.row(f);
-        }
-    }
-    kept.F.conservativeResize(count, 3);
-    return kept;
+    return {mesh.V, faces_where(mesh.F, [&](Eigen::Index f) {
+                return !drop((mesh.V.row(mesh.F(f, 0)) + mesh.V.row(mesh.F(f, 1)) +
+                              mesh.V.row(mesh.F(f, 2))) /
+                             3);
+            })};
 }
 
 TEST(HoleArea, ClosedSurfaceHasNone) {

@@ -19,6 +19,7 @@
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/match.h"
 #include "genflow/matching/partial_target.h"
+#include "genflow/mesh/face_selection.h"
 #include "genflow/operators/volume.h"
 #include "genflow/spatial/point_cloud_surface.h"
 #include "support/match_options.h"
@@ -66,12 +67,7 @@ double benchmark_error(const BenchmarkShape& from, const BenchmarkShape& to,
 // the target lies on a face of `view` (the part a partial match is asked to get right).
 double seen_error(const BenchmarkShape& from, const BenchmarkShape& to, const TriangleMesh& view,
                   const MatchResult& result) {
-    std::vector<bool> seen(static_cast<std::size_t>(to.mesh.V.rows()), false);
-    for (Eigen::Index f = 0; f < view.F.rows(); ++f) {
-        for (int c = 0; c < 3; ++c) {
-            seen[static_cast<std::size_t>(view.F(f, c))] = true;
-        }
-    }
+    const std::vector<bool> seen = vertices_on_faces(view.F, view.V.rows());
     const Eigen::VectorXd errors =
         GeodesicErrorMeasure(to.mesh)
             .errors_at(closest_points(result.counterparts, to.mesh), from.reference, to.reference)
