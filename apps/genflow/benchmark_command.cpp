@@ -49,20 +49,24 @@ namespace {
 
 // How each pair's target is given to the matcher.
 struct TargetForm {
-    bool points = false;   // its vertices alone, as a point cloud
-    bool normals = false;  // the points with the mesh's vertex normals, as a scanner gives them
-    double noise = 0;      // Gaussian noise on the points or vertices, σ in mean edge lengths
-    bool view = false;     // only the faces facing a camera (single_view()), from a random side
-    int holes = 0;         // holes punched (ScanDefects::holes)
-    int fragments = 0;     // loose fragments added (ScanDefects::fragments)
-    bool ragged = false;   // a ragged boundary (ScanDefects::ragged_boundary)
+    bool points = false;      // its vertices alone, as a point cloud
+    bool normals = false;     // the points with the mesh's vertex normals, as a scanner gives them
+    double noise = 0;         // Gaussian noise on the points or vertices, σ in mean edge lengths
+    bool view = false;        // only the faces facing a camera (single_view()), from a random side
+    int holes = 0;            // holes punched (ScanDefects::holes)
+    int fragments = 0;        // loose fragments added (ScanDefects::fragments)
+    bool ragged = false;      // a ragged boundary (ScanDefects::ragged_boundary)
+    double out_of_frame = 0;  // the share cut off by the frame (ScanDefects::out_of_frame)
 
     // Whether the target is given as the mesh is, so that the map's points lie on its faces.
     [[nodiscard]] bool as_is() const {
-        return !points && !view && noise == 0 && holes == 0 && fragments == 0 && !ragged;
+        return !points && !view && noise == 0 && holes == 0 && fragments == 0 && !ragged &&
+               out_of_frame == 0;
     }
     // Whether some of the mesh's surface is left out, so that the rows measure the seen part.
-    [[nodiscard]] bool shows_part() const { return view || holes > 0 || ragged; }
+    [[nodiscard]] bool shows_part() const {
+        return view || holes > 0 || ragged || out_of_frame > 0;
+    }
 };
 
 struct BenchmarkOptions {
@@ -264,7 +268,8 @@ TriangleMesh target_in_form(const Shape& from, const Shape& to, const TargetForm
                                    form.normals ? vertex_normals(to.mesh) : Eigen::MatrixX3d(0, 3));
     }
     const TriangleMesh seen = form.view ? single_view(to.mesh, view_direction(seed)) : to.mesh;
-    const ScanDefects defects{.holes = form.holes,
+    const ScanDefects defects{.out_of_frame = form.out_of_frame,
+                              .holes = form.holes,
                               .fragments = form.fragments,
                               .ragged_boundary = form.ragged,
                               .noise = form.noise};
@@ -321,20 +326,22 @@ void check_target_form(const TargetForm& target, const std::string& method) {
         throw InvalidInput(
             "--target-normals: normals are given to a point cloud (--target-points)");
     }
-    if (target.points && (target.holes > 0 || target.fragments > 0 || target.ragged)) {
+    if (target.points &&
+        (target.holes > 0 || target.fragments > 0 || target.ragged || target.out_of_frame > 0)) {
         throw InvalidInput(
-            "--target-holes, --target-fragments, --target-ragged: made on a mesh, not with "
-            "--target-points");
+            "--target-holes, --target-fragments, --target-ragged, --target-out-of-frame: made on "
+            "a mesh, not with --target-points");
     }
-    if (target.ragged && !target.view && target.holes == 0) {
+    if (target.ragged && !target.view && target.holes == 0 && target.out_of_frame == 0) {
         throw InvalidInput(
-            "--target-ragged: needs a boundary to make ragged (--target-view or "
-            "--target-holes)");
+            "--target-ragged: needs a boundary to make ragged (--target-view, --target-holes or "
+            "--target-out-of-frame)");
     }
     if (!target.as_is() && method != "match") {
         throw InvalidInput(
             "--target-points, --target-view, --target-noise, --target-holes, --target-fragments, "
-            "--target-ragged: only --method match takes a target in another form");
+            "--target-ragged, --target-out-of-frame: only --method match takes a target in another "
+            "form");
     }
 }
 
@@ -647,6 +654,7 @@ nlohmann::json summary_json(const BenchmarkOptions& options, std::size_t shapes,
             {"target_holes", options.target.holes},
             {"target_fragments", options.target.fragments},
             {"target_ragged", options.target.ragged},
+            {"target_out_of_frame", options.target.out_of_frame},
             {"geodesics", "shortest paths along the edges (Dijkstra)"},
             {"unit", "sqrt(area) of the target"},
             {"pck_step", kPckStep},
@@ -810,7 +818,14 @@ void register_benchmark_command(CLI::App& app) {
         ->check(CLI::Range(0, 1000));
     command->add_flag("--target-ragged", options->target.ragged,
                       "Make the target's boundary ragged (each face at it dropped with probability "
-                      "1/2), as a scan's edge; with --target-view or --target-holes");
+                      "1/2), as a scan's edge; with --target-view, --target-holes or "
+                      "--target-out-of-frame");
+    command
+        ->add_option("--target-out-of-frame", options->target.out_of_frame,
+                     "Cut off this share of each pair's target's extent along a random "
+                     "direction, as a part beyond a scanner's frame (0.15 of a standing body's "
+                     "height takes the feet); the rows add mean_seen")
+        ->check(CLI::Range(0.0, 0.9));
     command->add_flag("--json", options->json, "Print the summary as JSON instead of tables");
     command
         ->add_option("--method", options->method,

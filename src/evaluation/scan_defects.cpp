@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "genflow/evaluation/scan_defects.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "genflow/evaluation/single_view.h"
 #include "genflow/exceptions.h"
 #include "genflow/mesh/edges.h"
 #include "genflow/mesh/face_selection.h"
@@ -26,6 +28,9 @@ void check_defects(const ScanDefects& defects) {
     if (!counts_valid || !lengths_valid) {
         throw InvalidInput(
             "with_scan_defects: counts, radii and noise must be finite and non-negative");
+    }
+    if (!(defects.out_of_frame >= 0 && defects.out_of_frame < 1)) {
+        throw InvalidInput("with_scan_defects: the share out of the frame must lie in [0, 1)");
     }
 }
 
@@ -144,6 +149,18 @@ TriangleMesh with_fragments(const TriangleMesh& mesh, int fragments, double radi
     return result;
 }
 
+// The faces with a vertex beyond `share` of the extent along `direction` dropped: the frame's
+// edge is a plane, and a face it crosses is not seen whole.
+TriangleMesh out_of_frame(const TriangleMesh& mesh, double share,
+                          const Eigen::Vector3d& direction) {
+    const Eigen::VectorXd height = mesh.V * direction;
+    const double edge = height.maxCoeff() - share * (height.maxCoeff() - height.minCoeff());
+    return {mesh.V, faces_where(mesh.F, [&](Eigen::Index f) {
+                return std::max({height[mesh.F(f, 0)], height[mesh.F(f, 1)],
+                                 height[mesh.F(f, 2)]}) <= edge;
+            })};
+}
+
 void add_noise(TriangleMesh& mesh, double sigma, std::mt19937_64& random) {
     std::normal_distribution<double> normal(0, sigma);
     for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
@@ -161,8 +178,15 @@ TriangleMesh with_scan_defects(const TriangleMesh& mesh, const ScanDefects& defe
     check_defects(defects);
     const double diagonal = bounding_box_diagonal(mesh);
     const double edge = mesh.F.rows() > 0 ? mean_edge_length(mesh) : 0;
+    TriangleMesh result = mesh;
+    if (defects.out_of_frame > 0) {
+        // Its own draw (the seed's bits flipped by an odd constant, the golden ratio's), so that
+        // the other defects are the same with or without it.
+        result = out_of_frame(result, defects.out_of_frame,
+                              view_direction(seed ^ 0x9e3779b97f4a7c15ULL));
+    }
     std::mt19937_64 random(seed);
-    TriangleMesh result = with_holes(mesh, defects.holes, defects.hole_radius * diagonal, random);
+    result = with_holes(result, defects.holes, defects.hole_radius * diagonal, random);
     if (defects.ragged_boundary) {
         result = with_ragged_boundary(result, random);
     }

@@ -230,6 +230,19 @@ TEST(BenchmarkCli, MatchesEachPairOntoItsTargetWithTheDefectsOfAScan) {
     ASSERT_EQ(again.exit_code, 0) << again.err;
     EXPECT_EQ(nlohmann::json::parse(again.out)["rows"][0]["mean"], summary["rows"][0]["mean"]);
 
+    // The frame cuts a share of each target's extent off: the rows measure the part it keeps.
+    const auto framed = run_genflow(command + " --preset paper --target-out-of-frame 0.2");
+    ASSERT_EQ(framed.exit_code, 0) << framed.err;
+    const auto framed_summary = nlohmann::json::parse(framed.out);
+    EXPECT_EQ(framed_summary["target_out_of_frame"], 0.2);
+    for (const auto& row : framed_summary["rows"]) {
+        const double share = row["details"]["seen_area_share"].get<double>();
+        EXPECT_GT(share, 0.4) << row;
+        EXPECT_LT(share, 0.99) << row;
+        EXPECT_TRUE(row["mean_seen"].is_number()) << row;
+    }
+    EXPECT_EQ(run_genflow(command + " --target-out-of-frame 1").exit_code, 2);
+
     const auto ragged_alone = run_genflow(command + " --target-ragged");
     EXPECT_EQ(ragged_alone.exit_code, 2);
     EXPECT_NE(ragged_alone.err.find("--target-ragged: needs a boundary"), std::string::npos)

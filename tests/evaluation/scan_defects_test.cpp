@@ -12,6 +12,7 @@
 #include "genflow/mesh/primitives.h"
 #include "genflow/mesh/repair.h"
 #include "genflow/operators/area.h"
+#include "genflow/operators/hole_area.h"
 #include "genflow/operators/mesh_size.h"
 
 namespace genflow {
@@ -86,6 +87,24 @@ TEST(ScanDefects, FragmentsAreLooseCopiesOfDiscsOffTheSurface) {
     EXPECT_LT(added, 4 * 1.5 * M_PI * radius * radius);
 }
 
+// The frame cuts the sphere by a plane: by Archimedes a cap of height 2s on the unit sphere has
+// the share s of its area, and the faces the plane crosses go too. One rim is left, a circle.
+TEST(ScanDefects, OutOfFrameCutsACapOfTheStatedShare) {
+    const TriangleMesh sphere = make_icosphere(4);
+    const double share = 0.2;
+    const TriangleMesh cut = with_scan_defects(sphere, ScanDefects{.out_of_frame = share}, 4);
+    EXPECT_EQ(cut.V, sphere.V);
+    EXPECT_TRUE(faces_are_among(cut, sphere));
+    const double lost = 1 - surface_area(cut) / surface_area(sphere);
+    EXPECT_GT(lost, share);
+    EXPECT_LT(lost, share + 0.03);
+    // The rim follows a circle of radius √(1 − 0.6²) = 0.8 (zigzagging along the faces), which
+    // closes with a disc of area π 0.8².
+    EXPECT_NEAR(hole_area(cut), M_PI * 0.64, 0.1 * M_PI * 0.64);
+    const TriangleMesh other = with_scan_defects(sphere, ScanDefects{.out_of_frame = share}, 5);
+    EXPECT_TRUE(other.F.rows() != cut.F.rows() || other.F != cut.F);
+}
+
 // Noise moves every coordinate by a Gaussian of σ mean edge lengths.
 TEST(ScanDefects, NoiseHasTheStatedSpread) {
     const TriangleMesh sphere = make_icosphere(4);
@@ -103,6 +122,9 @@ TEST(ScanDefects, RefusesNegativeOrNonFiniteDefects) {
     EXPECT_THROW((void)with_scan_defects(sphere, ScanDefects{.hole_radius = NAN}, 0), InvalidInput);
     EXPECT_THROW((void)with_scan_defects(sphere, ScanDefects{.noise = -1}, 0), InvalidInput);
     EXPECT_THROW((void)with_scan_defects(sphere, ScanDefects{.fragment_radius = INFINITY}, 0),
+                 InvalidInput);
+    EXPECT_THROW((void)with_scan_defects(sphere, ScanDefects{.out_of_frame = 1}, 0), InvalidInput);
+    EXPECT_THROW((void)with_scan_defects(sphere, ScanDefects{.out_of_frame = NAN}, 0),
                  InvalidInput);
 }
 

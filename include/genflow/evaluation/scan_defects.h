@@ -11,6 +11,10 @@ namespace genflow {
 /// fractions of the mesh's bounding-box diagonal or of its mean edge, so the same defects are
 /// made at any scale.
 struct ScanDefects {
+    /// A part out of the frame: the share of the mesh's extent along a random direction beyond
+    /// which its faces are cut off, as where a subject reaches past a scanner's field of view
+    /// (0.15 of a standing body's height takes the feet and ankles). 0: none.
+    double out_of_frame = 0;
     /// Holes: discs of faces removed around area-uniform random points, as where a scanner saw
     /// nothing (occlusion, dark or shiny patches).
     int holes = 0;
@@ -28,11 +32,12 @@ struct ScanDefects {
     double noise = 0;
 };
 
-/// `mesh` with `defects`, drawn from `seed` (the same mesh for the same seed). Holes and the
-/// ragged boundary drop faces; the vertices are all kept, in order (those of no kept face
-/// unreferenced), so a vertex index of the result is one of `mesh`; the fragments' vertices
+/// `mesh` with `defects`, drawn from `seed` (the same mesh for the same seed). The frame's cut,
+/// holes and the ragged boundary drop faces; the vertices are all kept, in order (those of no kept
+/// face unreferenced), so a vertex index of the result is one of `mesh`; the fragments' vertices
 /// follow them.
-/// \throws InvalidInput if the mesh is invalid or a field of `defects` is negative or not finite.
+/// \throws InvalidInput if the mesh is invalid, a field of `defects` is negative or not finite,
+///         or `out_of_frame` is 1 or more.
 [[nodiscard]] TriangleMesh with_scan_defects(const TriangleMesh& mesh, const ScanDefects& defects,
                                              std::uint64_t seed);
 
