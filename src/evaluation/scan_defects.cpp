@@ -29,7 +29,7 @@ void check_defects(const ScanDefects& defects) {
         throw InvalidInput(
             "with_scan_defects: counts, radii and noise must be finite and non-negative");
     }
-    if (!(defects.out_of_frame >= 0 && defects.out_of_frame < 1)) {
+    if (!(detail::finite_at_least(defects.out_of_frame, 0) && defects.out_of_frame < 1)) {
         throw InvalidInput("with_scan_defects: the share out of the frame must lie in [0, 1)");
     }
 }
