@@ -159,6 +159,9 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
                     "weigh as surfaces a diagonal apart)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
+    command.add_flag("--no-landmark-spread", flags.no_landmark_spread,
+                     "Onto a partial target, do not spread the landmarks into a dense map of it by "
+                     "the points' geodesic distances to them");
     command.add_flag("--no-counterparts", flags.no_counterparts,
                      "Give each template vertex as its counterpart (--correspondence) the "
                      "target's closest point to where the match put it, not the point near it "
@@ -212,6 +215,8 @@ MatchOptions resolved(const MatchFlags& flags, bool has_parts) {
     options.turn_back.enabled = options.turn_back.enabled && !flags.no_turn_back;
     options.counterparts.enabled = options.counterparts.enabled && !flags.no_counterparts;
     options.limb_swaps.enabled = options.limb_swaps.enabled && !flags.no_limb_swaps;
+    options.landmarks.spread_onto_partial =
+        options.landmarks.spread_onto_partial && !flags.no_landmark_spread;
     options.guided.signature_fallback =
         options.guided.signature_fallback && !flags.no_signature_fallback;
     options.signatures_reading.enabled =

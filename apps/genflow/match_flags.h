@@ -18,6 +18,7 @@ struct MatchFlags {
     bool no_align = false;
     bool no_turn_back = false;
     bool no_limb_swaps = false;
+    bool no_landmark_spread = false;
     bool no_signature_fallback = false;
     bool no_signatures_reading = false;
     bool report_orientation = false;

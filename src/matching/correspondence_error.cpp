@@ -16,6 +16,7 @@
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/closest_point.h"
 #include "operators/triangle.h"
+#include "spatial/farthest_points.h"
 #include "spatial/surface_paths.h"
 
 namespace genflow {
@@ -44,16 +45,7 @@ public:
         // Spread over the shape by farthest-point sampling in space (cheap, and the graph
         // distances are computed from them side by side below).
         const Eigen::Index n = mesh.V.rows();
-        std::vector<Eigen::Index> chosen{0};
-        Eigen::VectorXd nearest = (mesh.V.rowwise() - mesh.V.row(0)).rowwise().norm();
-        while (static_cast<int>(chosen.size()) < std::min<Eigen::Index>(count, n)) {
-            Eigen::Index farthest = 0;
-            if (!(nearest.maxCoeff(&farthest) > 0)) {
-                break;
-            }
-            chosen.push_back(farthest);
-            nearest = nearest.cwiseMin((mesh.V.rowwise() - mesh.V.row(farthest)).rowwise().norm());
-        }
+        const std::vector<Eigen::Index> chosen = detail::farthest_points(mesh.V, 0, count);
         distance_.resize(n, static_cast<Eigen::Index>(chosen.size()));
 #pragma omp parallel for schedule(dynamic, 1)
         for (std::ptrdiff_t l = 0; l < static_cast<std::ptrdiff_t>(chosen.size()); ++l) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "genflow/matching/match.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -11,6 +12,7 @@
 
 #include "genflow/exceptions.h"
 #include "genflow/mesh/repair.h"
+#include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
 #include "matching/carried_back.h"
 #include "matching/coarsest_level.h"
@@ -26,6 +28,7 @@
 #include "matching/selection.h"
 #include "matching/signatures_reading.h"
 #include "matching/spectral_descriptors.h"
+#include "matching/spread_landmarks.h"
 #include "matching/stopwatch.h"
 #include "operators/triangle.h"
 
@@ -323,13 +326,29 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     return result;
 }
 
+// `options` with the landmarks spread over a partial target (LandmarkOptions::
+// spread_onto_partial): one for each vertex the coarsest level has on the part shown, the
+// resolution at which the flows first settle the template.
+MatchOptions with_spread_landmarks(MatchOptions options, const TriangleMesh& template_mesh,
+                                   const TriangleMesh& target) {
+    if (detail::matches_partial_target(options) && options.landmarks.spread_onto_partial) {
+        const double shown = surface_area(target) / surface_area(template_mesh);
+        const auto count = static_cast<Eigen::Index>(
+            std::lround(std::min(shown, 1.0) * static_cast<double>(options.coarse_vertices)));
+        options.landmarks.points =
+            detail::spread_landmarks(template_mesh, target, options.landmarks.points, count);
+    }
+    return options;
+}
+
 }  // namespace
 
 MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                   const MatchOptions& given) {
     check_inputs(template_mesh, target, given);
     detail::StageClock clock;
-    const MatchOptions options = detail::resolved_for_target(given, template_mesh, target);
+    const MatchOptions options = with_spread_landmarks(
+        detail::resolved_for_target(given, template_mesh, target), template_mesh, target);
     const bool partial = detail::matches_partial_target(options);
     const RepairedSurface repaired_template = repair_surface(template_mesh);
     // A partial target's pieces are all surface the template must cover.
@@ -339,7 +358,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
     if (!repaired_template.changed() && !repaired_target.changed()) {
         MatchResult result = match_surfaces(template_mesh, target, options, clock);
         result.partial_target = partial;
-        report_landmarks(result, options.landmarks, target);
+        report_landmarks(result, given.landmarks, target);
         result.stage_times = clock.times();
         return result;
     }
@@ -360,7 +379,7 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
         result.other_reading =
             detail::carried_back(repaired_template, template_mesh.V, *result.other_reading);
     }
-    report_landmarks(result, options.landmarks, target);
+    report_landmarks(result, given.landmarks, target);
     result.template_repairs = repaired_template.summary();
     result.target_repairs = repaired_target.summary();
     clock.end("repair");

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "genflow/evaluation/geodesic_error.h"
+#include "genflow/evaluation/reference_landmarks.h"
 #include "genflow/evaluation/scan_defects.h"
 #include "genflow/evaluation/single_view.h"
 #include "genflow/io/read_mesh.h"
@@ -140,6 +141,39 @@ TEST(FaustR, SingleViewIsMatchedAsAPartialTargetFromTheStartThatFacesIt) {
     EXPECT_TRUE(facing.partial_target);
     EXPECT_LT(error, 0.5 * unfacing_error);
     EXPECT_GT(volume, 0.8);
+}
+
+// The same view with twelve landmarks, reference points spread over the template among those it
+// holds, as a user clicks what a scan shows: spread into a dense map of the view by their
+// geodesic distances (LandmarkOptions::spread_onto_partial), they hold the template between
+// them, where the twelve alone let it slide. Seconds.
+TEST(FaustR, LandmarksSpreadOverASingleViewHoldTheTemplateBetweenThem) {
+    const std::optional<BenchmarkShape> from = faust_r_shape("tr_reg_014");
+    const std::optional<BenchmarkShape> to = faust_r_shape("tr_reg_078");
+    if (!from || !to) {
+        GTEST_SKIP() << "no data directory (set GENFLOW_DATA) or no FAUST_r training split in it";
+    }
+    const TriangleMesh view = single_view(to->mesh, Eigen::Vector3d(-0.928, 0.334, 0.164));
+    const std::vector<bool> seen = vertices_on_faces(view.F, view.V.rows());
+    std::vector<Eigen::Index> from_seen;
+    std::vector<Eigen::Index> to_seen;
+    for (std::size_t k = 0; k < to->reference.size(); ++k) {
+        if (seen[static_cast<std::size_t>(to->reference[k])]) {
+            from_seen.push_back(from->reference[k]);
+            to_seen.push_back(to->reference[k]);
+        }
+    }
+    MatchOptions options;
+    options.landmarks.points = reference_landmarks(from->mesh, from_seen, view, to_seen, 12);
+    const MatchResult spread = match(from->mesh, view, options);
+    options.landmarks.spread_onto_partial = false;
+    const MatchResult alone = match(from->mesh, view, options);
+    const double spread_error = seen_error(*from, *to, view, spread);
+    const double alone_error = seen_error(*from, *to, view, alone);
+    std::printf(
+        "FAUST_r 014 -> view of 078, 12 landmarks: seen error x100 %.2f spread, %.2f alone\n",
+        100 * spread_error, 100 * alone_error);
+    EXPECT_LT(spread_error, 0.8 * alone_error);
 }
 
 // Two subjects, 009 onto 057: the best rigid start settles the body mirrored (49 × 100 of

@@ -28,6 +28,12 @@ struct LandmarkOptions {
     /// around it, whose d_H resists as a whole, so the default is ten times that: the
     /// landmarks end near their points (docs/matching.md, "Landmarks").
     double weight = 10;
+    /// Onto a partial target (whose match runs without the intrinsic stages), spread three or
+    /// more landmarks into a dense map of it, one landmark more for each vertex the coarsest
+    /// level has on the part shown, by the points' geodesic distances to the landmarks
+    /// (docs/matching.md, "Landmarks onto a partial target"): between a few landmarks the
+    /// template slides on a view, and nothing else holds it.
+    bool spread_onto_partial = true;
 };
 
 /// The landmarks' mean squared distance from `positions` (the template's vertices, placed) to

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+#include "matching/spread_landmarks.h"
+
+#include <cmath>
+
+#include "genflow/mesh/face_selection.h"
+#include "genflow/operators/area.h"
+#include "spatial/farthest_points.h"
+#include "spatial/surface_paths.h"
+
+namespace genflow::detail {
+
+namespace {
+
+// Three distances fix a point of a surface (up to a reflection, which the landmarks' others and
+// the flow's d_H settle); fewer leave circles of candidates.
+constexpr std::size_t kFewestToSpread = 3;
+
+// The rows of `V` on faces (`on_faces`), nearest to `point`.
+Eigen::Index nearest_used(const Eigen::MatrixX3d& V, const std::vector<bool>& on_faces,
+                          const Eigen::RowVector3d& point) {
+    Eigen::VectorXd distance = (V.rowwise() - point).rowwise().squaredNorm();
+    for (Eigen::Index i = 0; i < V.rows(); ++i) {
+        if (!on_faces[static_cast<std::size_t>(i)]) {
+            distance(i) = INFINITY;
+        }
+    }
+    Eigen::Index nearest = 0;
+    distance.minCoeff(&nearest);
+    return nearest;
+}
+
+// Per vertex of `mesh`, exp(−(d_k/σ)²) of its geodesic distance d_k to each of `sources` (along
+// the edges; 0 on components without the source).
+Eigen::MatrixXd geodesic_gaussians(const TriangleMesh& mesh,
+                                   const std::vector<Eigen::Index>& sources, double sigma) {
+    const ChordGraph edges = chord_graph(mesh, 1);
+    Eigen::MatrixXd gaussians(mesh.V.rows(), static_cast<Eigen::Index>(sources.size()));
+    for (std::size_t k = 0; k < sources.size(); ++k) {
+        const Eigen::ArrayXd d = path_lengths_from(edges, sources[k]).array() / sigma;
+        gaussians.col(static_cast<Eigen::Index>(k)) = (-d.square()).exp().matrix();
+    }
+    return gaussians;
+}
+
+// The rows of `mesh`'s vertices on faces.
+std::vector<Eigen::Index> used_rows(const TriangleMesh& mesh, const std::vector<bool>& on_faces) {
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        if (on_faces[static_cast<std::size_t>(i)]) {
+            rows.push_back(i);
+        }
+    }
+    return rows;
+}
+
+}  // namespace
+
+std::vector<Landmark> spread_landmarks(const TriangleMesh& template_mesh,
+                                       const TriangleMesh& target,
+                                       const std::vector<Landmark>& landmarks, Eigen::Index count) {
+    if (landmarks.size() < kFewestToSpread || count <= 0) {
+        return landmarks;
+    }
+    const std::vector<bool> template_used =
+        vertices_on_faces(template_mesh.F, template_mesh.V.rows());
+    const std::vector<bool> target_used = vertices_on_faces(target.F, target.V.rows());
+    std::vector<Eigen::Index> from;
+    std::vector<Eigen::Index> to;
+    for (const Landmark& landmark : landmarks) {
+        from.push_back(landmark.vertex);
+        to.push_back(nearest_used(target.V, target_used, landmark.target_point.transpose()));
+    }
+    const double sigma =
+        std::sqrt(surface_area(template_mesh) / static_cast<double>(landmarks.size()));
+    const Eigen::MatrixXd template_gaussians = geodesic_gaussians(template_mesh, from, sigma);
+    const Eigen::MatrixXd target_gaussians = geodesic_gaussians(target, to, sigma);
+
+    const std::vector<Eigen::Index> template_rows = used_rows(template_mesh, template_used);
+    const Eigen::MatrixXd candidates = template_gaussians(template_rows, Eigen::all);
+    const std::vector<Eigen::Index> target_rows = used_rows(target, target_used);
+    const Eigen::MatrixX3d target_points = target.V(target_rows, Eigen::all);
+    Eigen::Index first = 0;
+    (target_points.rowwise() - target.V.row(to.front())).rowwise().squaredNorm().minCoeff(&first);
+
+    std::vector<Landmark> spread = landmarks;
+    for (const Eigen::Index sample : farthest_points(target_points, first, count)) {
+        const Eigen::Index point = target_rows[static_cast<std::size_t>(sample)];
+        Eigen::Index nearest = 0;  // by brute force: K columns, one pass over the template
+        (candidates.rowwise() - target_gaussians.row(point))
+            .rowwise()
+            .squaredNorm()
+            .minCoeff(&nearest);
+        spread.push_back(
+            {template_rows[static_cast<std::size_t>(nearest)], target.V.row(point).transpose()});
+    }
+    return spread;
+}
+
+}  // namespace genflow::detail
