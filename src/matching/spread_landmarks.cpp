@@ -16,20 +16,6 @@ namespace {
 // the flow's d_H settle); fewer leave circles of candidates.
 constexpr std::size_t kFewestToSpread = 3;
 
-// The rows of `V` on faces (`on_faces`), nearest to `point`.
-Eigen::Index nearest_used(const Eigen::MatrixX3d& V, const std::vector<bool>& on_faces,
-                          const Eigen::RowVector3d& point) {
-    Eigen::VectorXd distance = (V.rowwise() - point).rowwise().squaredNorm();
-    for (Eigen::Index i = 0; i < V.rows(); ++i) {
-        if (!on_faces[static_cast<std::size_t>(i)]) {
-            distance(i) = INFINITY;
-        }
-    }
-    Eigen::Index nearest = 0;
-    distance.minCoeff(&nearest);
-    return nearest;
-}
-
 // Per vertex of `mesh`, exp(−(d_k/σ)²) of its geodesic distance d_k to each of `sources` (along
 // the edges; 0 on components without the source).
 Eigen::MatrixXd geodesic_gaussians(const TriangleMesh& mesh,
@@ -62,29 +48,33 @@ std::vector<Landmark> spread_landmarks(const TriangleMesh& template_mesh,
     if (landmarks.size() < kFewestToSpread || count <= 0) {
         return landmarks;
     }
-    const std::vector<bool> template_used =
-        vertices_on_faces(template_mesh.F, template_mesh.V.rows());
-    const std::vector<bool> target_used = vertices_on_faces(target.F, target.V.rows());
+    const std::vector<Eigen::Index> template_rows =
+        used_rows(template_mesh, vertices_on_faces(template_mesh.F, template_mesh.V.rows()));
+    const std::vector<Eigen::Index> target_rows =
+        used_rows(target, vertices_on_faces(target.F, target.V.rows()));
+    const Eigen::MatrixX3d target_points = target.V(target_rows, Eigen::all);
     std::vector<Eigen::Index> from;
+    std::vector<Eigen::Index> nearest_points;  // rows of target_points
     std::vector<Eigen::Index> to;
     for (const Landmark& landmark : landmarks) {
         from.push_back(landmark.vertex);
-        to.push_back(nearest_used(target.V, target_used, landmark.target_point.transpose()));
+        Eigen::Index nearest = 0;
+        (target_points.rowwise() - landmark.target_point.transpose())
+            .rowwise()
+            .squaredNorm()
+            .minCoeff(&nearest);
+        nearest_points.push_back(nearest);
+        to.push_back(target_rows[static_cast<std::size_t>(nearest)]);
     }
     const double sigma =
         std::sqrt(surface_area(template_mesh) / static_cast<double>(landmarks.size()));
-    const Eigen::MatrixXd template_gaussians = geodesic_gaussians(template_mesh, from, sigma);
+    const Eigen::MatrixXd candidates =
+        geodesic_gaussians(template_mesh, from, sigma)(template_rows, Eigen::all);
     const Eigen::MatrixXd target_gaussians = geodesic_gaussians(target, to, sigma);
 
-    const std::vector<Eigen::Index> template_rows = used_rows(template_mesh, template_used);
-    const Eigen::MatrixXd candidates = template_gaussians(template_rows, Eigen::all);
-    const std::vector<Eigen::Index> target_rows = used_rows(target, target_used);
-    const Eigen::MatrixX3d target_points = target.V(target_rows, Eigen::all);
-    Eigen::Index first = 0;
-    (target_points.rowwise() - target.V.row(to.front())).rowwise().squaredNorm().minCoeff(&first);
-
     std::vector<Landmark> spread = landmarks;
-    for (const Eigen::Index sample : farthest_points(target_points, first, count)) {
+    for (const Eigen::Index sample :
+         farthest_points(target_points, nearest_points.front(), count)) {
         const Eigen::Index point = target_rows[static_cast<std::size_t>(sample)];
         Eigen::Index nearest = 0;  // by brute force: K columns, one pass over the template
         (candidates.rowwise() - target_gaussians.row(point))
