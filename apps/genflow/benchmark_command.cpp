@@ -260,28 +260,55 @@ Eigen::MatrixX3d cloud_of(const Shape& to, double noise, std::uint64_t seed) {
     return cloud;
 }
 
-// The target as `form` gives it to the matcher.
-TriangleMesh target_in_form(const Shape& from, const Shape& to, const TargetForm& form) {
-    const std::uint64_t seed = pair_seed(from, to);
-    if (form.points) {
-        return point_cloud_surface(cloud_of(to, form.noise, seed),
-                                   form.normals ? vertex_normals(to.mesh) : Eigen::MatrixX3d(0, 3));
+// A pair's target in its form: the part of the target mesh shown (on the mesh's own vertices,
+// with any fragments after them), and what the matcher is given, the same mesh or, as a point
+// cloud, the surface made on the shown part's points.
+struct FormedTarget {
+    TriangleMesh shown;
+    TriangleMesh matched;
+};
+
+// `mesh`'s vertices on faces, as a point cloud moved by Gaussian noise of σ = `noise` mean
+// edge lengths of `to`, with the vertex normals of `to` where `normals`.
+TriangleMesh cloud_surface_of(const TriangleMesh& mesh, const Shape& to, bool normals, double noise,
+                              std::uint64_t seed) {
+    const Eigen::MatrixX3d cloud = cloud_of(to, noise, seed);
+    const Eigen::MatrixX3d to_normals = vertex_normals(to.mesh);
+    const std::vector<bool> used = vertices_on_faces(mesh.F, mesh.V.rows());
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        if (used[static_cast<std::size_t>(i)]) {
+            rows.push_back(i);
+        }
     }
+    return point_cloud_surface(
+        cloud(rows, Eigen::all),
+        normals ? Eigen::MatrixX3d(to_normals(rows, Eigen::all)) : Eigen::MatrixX3d(0, 3));
+}
+
+// The target as `form` gives it to the matcher.
+FormedTarget target_in_form(const Shape& from, const Shape& to, const TargetForm& form) {
+    const std::uint64_t seed = pair_seed(from, to);
     const TriangleMesh seen = form.view ? single_view(to.mesh, view_direction(seed)) : to.mesh;
+    if (form.points) {
+        return {seen, cloud_surface_of(seen, to, form.normals, form.noise, seed)};
+    }
     const ScanDefects defects{.out_of_frame = form.out_of_frame,
                               .holes = form.holes,
                               .fragments = form.fragments,
                               .ragged_boundary = form.ragged,
                               .noise = form.noise};
     // The defects' draw apart from the view's, so that a view is the same with or without them.
-    return with_scan_defects(seen, defects, seed + 1);
+    TriangleMesh shown = with_scan_defects(seen, defects, seed + 1);
+    return {shown, shown};
 }
 
 // The map of `method` alone, timed by the wall clock: the deformed template's counterparts
 // ("match"), or the intrinsic vertex map alone ("spectral-map", spectral_map()).
 PairMap map_of_method(const std::string& method, const Shape& from, const Shape& to,
                       const MatchOptions& options, const TargetForm& target,
-                      const TriangleMesh& matched) {
+                      const FormedTarget& formed) {
+    const TriangleMesh& matched = formed.matched;
     if (method == "spectral-map") {
         const auto start = std::chrono::steady_clock::now();
         const SpectralMap map = spectral_map(from.mesh, to.mesh);
@@ -298,8 +325,8 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
     }
     PairMap map{std::move(points), result.seconds, match_choices(result)};
     if (target.shows_part()) {
-        map.seen = vertices_on_faces(matched.F, matched.V.rows());
-        map.details["seen_area_share"] = seen_area_share(matched, to.mesh);
+        map.seen = vertices_on_faces(formed.shown.F, formed.shown.V.rows());
+        map.details["seen_area_share"] = seen_area_share(formed.shown, to.mesh);
         // A template that folds its unseen side onto the view loses its volume.
         const double volume = enclosed_volume(from.mesh);
         map.details["volume_kept"] = volume > 0
@@ -318,10 +345,6 @@ PairMap map_of_method(const std::string& method, const Shape& from, const Shape&
 
 // The target forms that can be made together, and only for the matcher.
 void check_target_form(const TargetForm& target, const std::string& method) {
-    if (target.view && target.points) {
-        throw InvalidInput(
-            "--target-view: not with --target-points (a view of a cloud is not made)");
-    }
     if (target.normals && !target.points) {
         throw InvalidInput(
             "--target-normals: normals are given to a point cloud (--target-points)");
@@ -354,11 +377,11 @@ double processor_seconds() {
 // shows part of the surface, among the reference points it holds: a user clicks what a scan
 // shows.
 std::vector<Landmark> landmarks_of(const Shape& from, const Shape& to, const TargetForm& form,
-                                   const TriangleMesh& target, int count) {
+                                   const TriangleMesh& shown, int count) {
     if (!form.shows_part()) {
         return reference_landmarks(from.mesh, from.reference, to.mesh, to.reference, count);
     }
-    const std::vector<bool> seen = vertices_on_faces(target.F, target.V.rows());
+    const std::vector<bool> seen = vertices_on_faces(shown.F, shown.V.rows());
     std::vector<Eigen::Index> from_seen;
     std::vector<Eigen::Index> to_seen;
     for (std::size_t k = 0; k < to.reference.size(); ++k) {
@@ -380,10 +403,10 @@ std::vector<Landmark> landmarks_of(const Shape& from, const Shape& to, const Tar
 PairMap map_of(const std::string& method, const Shape& from, const Shape& to,
                const MatchOptions& options, const TargetForm& form, int landmarks) {
     const double processor_start = processor_seconds();
-    const TriangleMesh target = target_in_form(from, to, form);
+    const FormedTarget target = target_in_form(from, to, form);
     MatchOptions pair_options = options;
     if (landmarks > 0) {
-        pair_options.landmarks.points = landmarks_of(from, to, form, target, landmarks);
+        pair_options.landmarks.points = landmarks_of(from, to, form, target.shown, landmarks);
     }
     PairMap map = map_of_method(method, from, to, pair_options, form, target);
     map.processor_seconds = processor_seconds() - processor_start;
@@ -792,7 +815,8 @@ void register_benchmark_command(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     command->add_flag("--target-points", options->target.points,
                       "Give each pair's match its target as a point cloud, its vertices alone "
-                      "(the errors are measured on the target mesh)");
+                      "(with --target-view, those of the view, as a depth camera gives them; the "
+                      "errors are measured on the target mesh)");
     command->add_flag("--target-view", options->target.view,
                       "Give each pair's match only the target's faces that face a camera from a "
                       "random side (the same side for a pair in every run); the rows add the "

@@ -52,6 +52,7 @@ std::shared_ptr<const LandmarkEnergy> level_landmarks(const std::vector<Level>& 
     const Eigen::MatrixX3d& finest_rest = pyramid.front().template_mesh.V;
     std::vector<Eigen::Index> vertices;
     Eigen::MatrixX3d points(static_cast<Eigen::Index>(landmarks.size()), 3);
+    Eigen::VectorXd weights(static_cast<Eigen::Index>(landmarks.size()));
     for (std::size_t k = 0; k < landmarks.size(); ++k) {
         Eigen::Index nearest = 0;
         (level.template_mesh.V.rowwise() - finest_rest.row(landmarks[k].vertex))
@@ -60,9 +61,10 @@ std::shared_ptr<const LandmarkEnergy> level_landmarks(const std::vector<Level>& 
             .minCoeff(&nearest);
         vertices.push_back(nearest);
         points.row(static_cast<Eigen::Index>(k)) = landmarks[k].target_point.transpose();
+        weights[static_cast<Eigen::Index>(k)] = landmarks[k].weight;
     }
     return std::make_shared<const LandmarkEnergy>(level.template_mesh.V.rows(), std::move(vertices),
-                                                  std::move(points), diagonal);
+                                                  std::move(points), diagonal, std::move(weights));
 }
 
 }  // namespace

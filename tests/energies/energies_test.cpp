@@ -149,6 +149,31 @@ TEST(LandmarkEnergy, IsTheMeanSquaredDistanceInUnitsOfTheLength) {
     EXPECT_LT(energy.differential(moved).cwiseAbs().maxCoeff(), 1e-15);
 }
 
+TEST(LandmarkEnergy, AWeightCountsAsThatManyCopiesOfItsLandmark) {
+    const TriangleMesh mesh = test::noisy_torus(12, 6, 0.2);
+    const Eigen::MatrixX3d points = test::random_matrix(2, 3, 8);
+    Eigen::MatrixX3d copies(4, 3);
+    copies << points.row(0), points.row(1), points.row(1), points.row(1);
+    const LandmarkEnergy weighted(mesh.V.rows(), {2, 11}, points, 0.8, Eigen::Vector2d(1, 3));
+    const LandmarkEnergy repeated(mesh.V.rows(), {2, 11, 11, 11}, copies, 0.8);
+    // (|x_2 − y_0|² + 3 |x_11 − y_1|²) / (4 · 0.8²), as the four landmarks alike.
+    const double expected = ((mesh.V.row(2) - points.row(0)).squaredNorm() +
+                             3 * (mesh.V.row(11) - points.row(1)).squaredNorm()) /
+                            (4 * 0.64);
+    EXPECT_NEAR(weighted.value(mesh), expected, 1e-14 * expected);
+    EXPECT_NEAR(repeated.value(mesh), expected, 1e-14 * expected);
+    EXPECT_LT(test::relative_error(weighted.differential(mesh), repeated.differential(mesh)),
+              1e-14);
+    expect_differential_matches_finite_differences(weighted, mesh);
+    // The copies' linearization is exact (below), so the weighted one is where they agree.
+    const auto by_weight = weighted.linearize(mesh);
+    const auto by_copies = repeated.linearize(mesh);
+    ASSERT_TRUE(by_weight && by_copies);
+    EXPECT_LT((Eigen::MatrixXd(by_weight->A) - Eigen::MatrixXd(by_copies->A)).norm(),
+              1e-14 * Eigen::MatrixXd(by_copies->A).norm());
+    EXPECT_LT(test::relative_error(by_weight->B, by_copies->B), 1e-14);
+}
+
 TEST(LandmarkEnergy, LinearizationIsExactAndPositiveSemiDefinite) {
     const TriangleMesh mesh = test::noisy_torus(12, 6, 0.2);
     const Eigen::MatrixX3d points = test::random_matrix(3, 3, 5);
@@ -180,6 +205,12 @@ TEST(LandmarkEnergy, RefusesWhatItCannotUse) {
     Eigen::MatrixX3d bad = one;
     bad(0, 1) = INFINITY;
     EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {0}, bad, 1), InvalidInput);
+    EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {0}, one, 1, Eigen::VectorXd::Zero(1)),
+                 InvalidInput);
+    EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {0}, one, 1, Eigen::VectorXd::Constant(1, NAN)),
+                 InvalidInput);
+    EXPECT_THROW(LandmarkEnergy(mesh.V.rows(), {0}, one, 1, Eigen::VectorXd::Ones(2)),
+                 InvalidInput);
     const LandmarkEnergy energy(mesh.V.rows(), {0}, one, 1);
     EXPECT_THROW((void)energy.value(test::noisy_icosphere(2)), InvalidInput);
     EXPECT_THROW((void)energy.differential(test::noisy_icosphere(2)), InvalidInput);

@@ -50,6 +50,35 @@ TEST(LandmarkSimilarity, RecoversASimilarityFromThreePointsAndNeedsThem) {
     EXPECT_FALSE(landmark_similarity(landmarks_at_vertices(line, {0, 1, 2}), line));
 }
 
+TEST(LandmarkSimilarity, WeighsEachLandmarkAsThatManyCopiesOfIt) {
+    const TriangleMesh mesh = test::noisy_icosphere(1, 0.2);
+    Similarity motion;
+    motion.rotation = Eigen::AngleAxisd(1.0, Eigen::Vector3d(0, 1, 1).normalized()).matrix();
+    motion.translation = Eigen::Vector3d(-1, 4, 0.5);
+    motion.scale = 0.7;
+    Eigen::MatrixX3d moved = motion.apply(mesh.V);
+    moved.row(30) += Eigen::RowVector3d(0.5, -0.2, 0.3);  // one landmark that disagrees
+    std::vector<Landmark> weighted = landmarks_at_vertices(moved, {0, 5, 17, 30});
+    weighted[1].weight = 3;
+    weighted[3].weight = 0.5;
+    const std::vector<Landmark> copies = landmarks_at_vertices(moved, {0, 5, 5, 5, 17, 30});
+    std::vector<Landmark> doubled = copies;  // 0.5 against 1 + 3 + 1 as 1 against 2 + 6 + 2
+    for (Landmark& landmark : doubled) {
+        landmark.weight = landmark.vertex == 30 ? 1 : 2;
+    }
+    const std::optional<Similarity> fit = landmark_similarity(weighted, mesh.V);
+    const std::optional<Similarity> fit_to_doubled = landmark_similarity(doubled, mesh.V);
+    const std::optional<Similarity> fit_to_copies = landmark_similarity(copies, mesh.V);
+    ASSERT_TRUE(fit && fit_to_doubled && fit_to_copies);
+    EXPECT_LT((fit->matrix() - fit_to_doubled->matrix()).norm(), 1e-12);
+    // The disagreeing landmark at half weight pulls the fit less than at a whole one.
+    EXPECT_GT((fit->matrix() - fit_to_copies->matrix()).norm(), 1e-3);
+    EXPECT_LT((fit->matrix() - motion.matrix()).norm(),
+              (fit_to_copies->matrix() - motion.matrix()).norm());
+    EXPECT_LT(landmark_mean_squared_distance(weighted, fit->apply(mesh.V)),
+              landmark_mean_squared_distance(weighted, fit_to_copies->apply(mesh.V)));
+}
+
 TEST(ReferenceLandmarks, SpreadOverTheTemplateAndPairTheReferencePoints) {
     const TriangleMesh from = make_limb(3);
     TriangleMesh to = from;
@@ -134,6 +163,8 @@ TEST(Match, RefusesLandmarksItCannotPlace) {
     options.landmarks.points = {{mesh.V.rows(), Eigen::Vector3d::Zero()}};
     EXPECT_THROW((void)match(mesh, mesh, options), InvalidInput);
     options.landmarks.points = {{0, Eigen::Vector3d(0, NAN, 0)}};
+    EXPECT_THROW((void)match(mesh, mesh, options), InvalidInput);
+    options.landmarks.points = {{0, Eigen::Vector3d::Zero(), 0}};
     EXPECT_THROW((void)match(mesh, mesh, options), InvalidInput);
     options.landmarks.points = {{0, Eigen::Vector3d::Zero()}};
     options.landmarks.weight = -1;

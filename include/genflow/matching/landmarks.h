@@ -15,6 +15,9 @@ namespace genflow {
 struct Landmark {
     Eigen::Index vertex = 0;
     Eigen::Vector3d target_point = Eigen::Vector3d::Zero();
+    /// Its share of the landmarks' term relative to the others' (positive): a landmark weighs
+    /// weight / Σ weights of it.
+    double weight = 1;
 };
 
 /// Landmarks of a match (MatchOptions::landmarks): soft constraints in every level's flow, and
@@ -32,18 +35,20 @@ struct LandmarkOptions {
     /// more landmarks into a dense map of it, one landmark more for each vertex the coarsest
     /// level has on the part shown, by the points' geodesic distances to the landmarks
     /// (docs/matching.md, "Landmarks onto a partial target"): between a few landmarks the
-    /// template slides on a view, and nothing else holds it.
+    /// template slides on a view, and nothing else holds it. The given landmarks keep their
+    /// term; the spread ones add one of four times its weight.
     bool spread_onto_partial = true;
 };
 
 /// The landmarks' mean squared distance from `positions` (the template's vertices, placed) to
-/// their points.
+/// their points, each weighted by its Landmark::weight.
 [[nodiscard]] double landmark_mean_squared_distance(const std::vector<Landmark>& landmarks,
                                                     const Eigen::MatrixX3d& positions);
 
 /// The similarity (rotation, translation and uniform scale) that takes the landmarks' template
-/// vertices nearest to their points in the least-squares sense (Umeyama 1991), or nothing with
-/// fewer than three landmarks or all of them on one line, which leave a rotation free.
+/// vertices nearest to their points in the least-squares sense, each weighted by its
+/// Landmark::weight (Umeyama 1991), or nothing with fewer than three landmarks or all of them on
+/// one line, which leave a rotation free.
 [[nodiscard]] std::optional<Similarity> landmark_similarity(
     const std::vector<Landmark>& landmarks, const Eigen::MatrixX3d& template_vertices);
 
