@@ -206,7 +206,8 @@ void register_match_command(CLI::App& app) {
                         "'_'-separated word, names, else the rest pose)");
     command->add_option("--landmarks", options->landmarks,
                         "Known correspondences, one per line: 'i x y z' (template vertex i goes "
-                        "to the point) or 'i j' (to target vertex j), 0-based, '#' comments");
+                        "to the point) or 'i j' (to target vertex j), 0-based, each with an "
+                        "optional weight last, '#' comments");
     add_prior_flag(*command, options->flags);
     add_match_flags(*command, options->flags);
     command->add_option("--correspondence", options->correspondence,

@@ -48,14 +48,18 @@ std::vector<Landmark> read_landmarks(const std::filesystem::path& path,
         if (tokens.empty()) {
             continue;
         }
-        if (tokens.size() != 2 && tokens.size() != 4) {
+        if (tokens.size() < 2 || tokens.size() > 5) {
             fail(
                 "expected 'i x y z' (a template vertex and a point) or 'i j' (a template "
-                "vertex and a target vertex)");
+                "vertex and a target vertex), each with an optional weight");
         }
+        // Two or three tokens name a target vertex, four or five a point; an odd count ends
+        // with the weight.
+        const bool to_vertex = tokens.size() <= 3;
+        const bool weighted = tokens.size() == 3 || tokens.size() == 5;
         Landmark landmark;
         landmark.vertex = parse_index(tokens[0], template_vertices, "template vertex", fail);
-        if (tokens.size() == 2) {
+        if (to_vertex) {
             landmark.target_point =
                 target.V.row(parse_index(tokens[1], target.V.rows(), "target vertex", fail))
                     .transpose();
@@ -67,6 +71,10 @@ std::vector<Landmark> read_landmarks(const std::filesystem::path& path,
                     fail("expected a finite coordinate, got '" + std::string(token) + "'");
                 }
             }
+        }
+        if (weighted && (!detail::parse_double(tokens.back(), landmark.weight) ||
+                         !std::isfinite(landmark.weight) || !(landmark.weight > 0))) {
+            fail("expected a positive weight, got '" + std::string(tokens.back()) + "'");
         }
         landmarks.push_back(landmark);
     }

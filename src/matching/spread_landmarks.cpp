@@ -40,6 +40,14 @@ std::vector<Eigen::Index> used_rows(const TriangleMesh& mesh, const std::vector<
     return rows;
 }
 
+// The row of `rows` nearest `query`, by brute force (a few thousand rows, one pass each).
+template <typename Rows, typename Query>
+Eigen::Index nearest_row(const Rows& rows, const Query& query) {
+    Eigen::Index nearest = 0;
+    (rows.rowwise() - query).rowwise().squaredNorm().minCoeff(&nearest);
+    return nearest;
+}
+
 }  // namespace
 
 std::vector<Landmark> spread_landmarks(const TriangleMesh& template_mesh,
@@ -53,18 +61,16 @@ std::vector<Landmark> spread_landmarks(const TriangleMesh& template_mesh,
     const std::vector<Eigen::Index> target_rows =
         used_rows(target, vertices_on_faces(target.F, target.V.rows()));
     const Eigen::MatrixX3d target_points = target.V(target_rows, Eigen::all);
+    // Each landmark on its template vertex and on the target's used vertex nearest its point.
     std::vector<Eigen::Index> from;
-    std::vector<Eigen::Index> nearest_points;  // rows of target_points
-    std::vector<Eigen::Index> to;
+    std::vector<Eigen::Index> on_target;  // rows of target_points
     for (const Landmark& landmark : landmarks) {
         from.push_back(landmark.vertex);
-        Eigen::Index nearest = 0;
-        (target_points.rowwise() - landmark.target_point.transpose())
-            .rowwise()
-            .squaredNorm()
-            .minCoeff(&nearest);
-        nearest_points.push_back(nearest);
-        to.push_back(target_rows[static_cast<std::size_t>(nearest)]);
+        on_target.push_back(nearest_row(target_points, landmark.target_point.transpose()));
+    }
+    std::vector<Eigen::Index> to;
+    for (const Eigen::Index row : on_target) {
+        to.push_back(target_rows[static_cast<std::size_t>(row)]);
     }
     const double sigma =
         std::sqrt(surface_area(template_mesh) / static_cast<double>(landmarks.size()));
@@ -73,16 +79,11 @@ std::vector<Landmark> spread_landmarks(const TriangleMesh& template_mesh,
     const Eigen::MatrixXd target_gaussians = geodesic_gaussians(target, to, sigma);
 
     std::vector<Landmark> spread = landmarks;
-    for (const Eigen::Index sample :
-         farthest_points(target_points, nearest_points.front(), count)) {
+    for (const Eigen::Index sample : farthest_points(target_points, on_target.front(), count)) {
         const Eigen::Index point = target_rows[static_cast<std::size_t>(sample)];
-        Eigen::Index nearest = 0;  // by brute force: K columns, one pass over the template
-        (candidates.rowwise() - target_gaussians.row(point))
-            .rowwise()
-            .squaredNorm()
-            .minCoeff(&nearest);
+        const Eigen::Index match = nearest_row(candidates, target_gaussians.row(point));
         spread.push_back(
-            {template_rows[static_cast<std::size_t>(nearest)], target.V.row(point).transpose()});
+            {template_rows[static_cast<std::size_t>(match)], target.V.row(point).transpose()});
     }
     return spread;
 }

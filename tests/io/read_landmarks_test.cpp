@@ -26,6 +26,22 @@ TEST(ReadLandmarks, ReadsPointsAndTargetVerticesWithComments) {
     EXPECT_EQ(landmarks[1].target_point, target.V.row(7).transpose());
     EXPECT_EQ(landmarks[2].vertex, 9);
     EXPECT_EQ(landmarks[2].target_point, Eigen::Vector3d(1, 2, 3));
+    for (const Landmark& landmark : landmarks) {
+        EXPECT_EQ(landmark.weight, 1);
+    }
+}
+
+// A last, odd token is the landmark's weight: three tokens name a target vertex, five a point.
+TEST(ReadLandmarks, ReadsAnOptionalWeight) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh target = test::noisy_icosphere(1);
+    test::write_bytes(directory / "marks.txt", "3 0.5 -1 2e-1 4\n0 7 0.25  # less sure\n");
+    const std::vector<Landmark> landmarks = read_landmarks(directory / "marks.txt", 10, target);
+    ASSERT_EQ(landmarks.size(), 2U);
+    EXPECT_EQ(landmarks[0].target_point, Eigen::Vector3d(0.5, -1, 0.2));
+    EXPECT_EQ(landmarks[0].weight, 4);
+    EXPECT_EQ(landmarks[1].target_point, target.V.row(7).transpose());
+    EXPECT_EQ(landmarks[1].weight, 0.25);
 }
 
 // The message names the file and the line, and says what is wrong.
@@ -47,8 +63,12 @@ TEST(ReadLandmarks, RefusesBadLinesNamingFileAndLine) {
     expect_landmarks_refused("1 2\n10 2\n", "line 2: template vertex index 10 outside 0..9");
     expect_landmarks_refused("-1 2\n", "line 1: template vertex index -1 outside 0..9");
     expect_landmarks_refused("1 12\n", "line 1: target vertex index 12 outside 0..11");
-    expect_landmarks_refused("1 2 3\n", "line 1: expected 'i x y z'");
-    expect_landmarks_refused("1 2 3 4 5\n", "line 1: expected 'i x y z'");
+    expect_landmarks_refused("1\n", "line 1: expected 'i x y z'");
+    expect_landmarks_refused("1 2 3 4 5 6\n", "line 1: expected 'i x y z'");
+    expect_landmarks_refused("1 2 0\n", "line 1: expected a positive weight, got '0'");
+    expect_landmarks_refused("1 2 3 4 -1\n", "line 1: expected a positive weight, got '-1'");
+    expect_landmarks_refused("1 2 inf\n", "line 1: expected a positive weight, got 'inf'");
+    expect_landmarks_refused("1 2 3 4 w\n", "line 1: expected a positive weight, got 'w'");
     expect_landmarks_refused("1.5 2\n", "line 1: expected a template vertex index, got '1.5'");
     expect_landmarks_refused("# a\n1 2 nan 4\n", "line 2: expected a finite coordinate, got 'nan'");
     expect_landmarks_refused("1 x 3 4\n", "line 1: expected a finite coordinate, got 'x'");
