@@ -272,18 +272,12 @@ struct FormedTarget {
 // edge lengths of `to`, with the vertex normals of `to` where `normals`.
 TriangleMesh cloud_surface_of(const TriangleMesh& mesh, const Shape& to, bool normals, double noise,
                               std::uint64_t seed) {
-    const Eigen::MatrixX3d cloud = cloud_of(to, noise, seed);
-    const Eigen::MatrixX3d to_normals = vertex_normals(to.mesh);
-    const std::vector<bool> used = vertices_on_faces(mesh.F, mesh.V.rows());
-    std::vector<Eigen::Index> rows;
-    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
-        if (used[static_cast<std::size_t>(i)]) {
-            rows.push_back(i);
-        }
+    const std::vector<Eigen::Index> rows = vertices_used_by(mesh.F, mesh.V.rows());
+    const Eigen::MatrixX3d cloud = cloud_of(to, noise, seed)(rows, Eigen::all);
+    if (!normals) {
+        return point_cloud_surface(cloud, Eigen::MatrixX3d(0, 3));
     }
-    return point_cloud_surface(
-        cloud(rows, Eigen::all),
-        normals ? Eigen::MatrixX3d(to_normals(rows, Eigen::all)) : Eigen::MatrixX3d(0, 3));
+    return point_cloud_surface(cloud, vertex_normals(to.mesh)(rows, Eigen::all));
 }
 
 // The target as `form` gives it to the matcher.

@@ -87,7 +87,7 @@ void check_landmarks(const LandmarkOptions& landmarks, Eigen::Index template_ver
                                std::to_string(landmark.vertex) + " outside 0.." +
                                std::to_string(template_vertices - 1) + " or a non-finite point");
         }
-        if (!detail::finite_at_least(landmark.weight, 0) || landmark.weight == 0) {
+        if (!detail::finite_above(landmark.weight, 0)) {
             throw InvalidInput("match: landmark " + std::to_string(k) +
                                ": weight must be positive and finite");
         }

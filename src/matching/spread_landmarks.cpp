@@ -29,17 +29,6 @@ Eigen::MatrixXd geodesic_gaussians(const TriangleMesh& mesh,
     return gaussians;
 }
 
-// The rows of `mesh`'s vertices on faces.
-std::vector<Eigen::Index> used_rows(const TriangleMesh& mesh, const std::vector<bool>& on_faces) {
-    std::vector<Eigen::Index> rows;
-    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
-        if (on_faces[static_cast<std::size_t>(i)]) {
-            rows.push_back(i);
-        }
-    }
-    return rows;
-}
-
 // The row of `rows` nearest `query`, by brute force (a few thousand rows, one pass each).
 template <typename Rows, typename Query>
 Eigen::Index nearest_row(const Rows& rows, const Query& query) {
@@ -57,20 +46,17 @@ std::vector<Landmark> spread_landmarks(const TriangleMesh& template_mesh,
         return landmarks;
     }
     const std::vector<Eigen::Index> template_rows =
-        used_rows(template_mesh, vertices_on_faces(template_mesh.F, template_mesh.V.rows()));
-    const std::vector<Eigen::Index> target_rows =
-        used_rows(target, vertices_on_faces(target.F, target.V.rows()));
+        vertices_used_by(template_mesh.F, template_mesh.V.rows());
+    const std::vector<Eigen::Index> target_rows = vertices_used_by(target.F, target.V.rows());
     const Eigen::MatrixX3d target_points = target.V(target_rows, Eigen::all);
     // Each landmark on its template vertex and on the target's used vertex nearest its point.
     std::vector<Eigen::Index> from;
     std::vector<Eigen::Index> on_target;  // rows of target_points
+    std::vector<Eigen::Index> to;
     for (const Landmark& landmark : landmarks) {
         from.push_back(landmark.vertex);
         on_target.push_back(nearest_row(target_points, landmark.target_point.transpose()));
-    }
-    std::vector<Eigen::Index> to;
-    for (const Eigen::Index row : on_target) {
-        to.push_back(target_rows[static_cast<std::size_t>(row)]);
+        to.push_back(target_rows[static_cast<std::size_t>(on_target.back())]);
     }
     const double sigma =
         std::sqrt(surface_area(template_mesh) / static_cast<double>(landmarks.size()));

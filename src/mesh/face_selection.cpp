@@ -13,4 +13,15 @@ std::vector<bool> vertices_on_faces(const Eigen::MatrixX3i& F, Eigen::Index num_
     return used;
 }
 
+std::vector<Eigen::Index> vertices_used_by(const Eigen::MatrixX3i& F, Eigen::Index num_vertices) {
+    const std::vector<bool> used = vertices_on_faces(F, num_vertices);
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index i = 0; i < num_vertices; ++i) {
+        if (used[static_cast<std::size_t>(i)]) {
+            rows.push_back(i);
+        }
+    }
+    return rows;
+}
+
 }  // namespace genflow

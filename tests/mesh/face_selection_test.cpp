@@ -25,6 +25,8 @@ TEST(FaceSelection, FlagsTheVerticesFacesUse) {
     const std::vector<bool> used = vertices_on_faces(F, 5);
     EXPECT_EQ(used, (std::vector<bool>{true, true, false, true, true}));
     EXPECT_EQ(vertices_on_faces(Eigen::MatrixX3i(0, 3), 2), (std::vector<bool>{false, false}));
+    EXPECT_EQ(vertices_used_by(F, 5), (std::vector<Eigen::Index>{0, 1, 3, 4}));
+    EXPECT_TRUE(vertices_used_by(Eigen::MatrixX3i(0, 3), 2).empty());
 }
 
 }  // namespace

@@ -20,8 +20,7 @@ namespace genflow {
 /// `template_vertices` is the template's vertex count; `target` gives the vertices `j` name.
 /// \throws IoError "<path>: line N: <problem>" for a line of another shape, a token that is not
 ///         a number, an index out of range, a non-finite coordinate or a weight that is not
-///         positive; "<path>: ..." if the file
-///         cannot be read or holds no landmark.
+///         positive; "<path>: ..." if the file cannot be read or holds no landmark.
 [[nodiscard]] std::vector<Landmark> read_landmarks(const std::filesystem::path& path,
                                                    Eigen::Index template_vertices,
                                                    const TriangleMesh& target);

@@ -26,4 +26,9 @@ template <typename Keep>
 [[nodiscard]] std::vector<bool> vertices_on_faces(const Eigen::MatrixX3i& F,
                                                   Eigen::Index num_vertices);
 
+/// The vertices some face of F uses, in increasing order: the rows of vertices_on_faces() that
+/// are true.
+[[nodiscard]] std::vector<Eigen::Index> vertices_used_by(const Eigen::MatrixX3i& F,
+                                                         Eigen::Index num_vertices);
+
 }  // namespace genflow
