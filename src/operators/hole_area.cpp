@@ -3,41 +3,37 @@
 
 #include <vector>
 
-#include "genflow/mesh/edges.h"
-#include "mesh/union_find.h"
+#include "genflow/mesh/boundary_loops.h"
 #include "operators/triangle.h"
 
 namespace genflow {
 
+namespace {
+
+// ½ Σ (x_a − c) × (x_b − c) over the loop's edges a → b, about its centroid c: round-off stays
+// at the hole's scale, not the mesh's distance from the origin.
+Eigen::Vector3d vector_area(const Eigen::MatrixX3d& V, const std::vector<int>& loop) {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const int v : loop) {
+        centre += V.row(v).transpose();
+    }
+    centre /= static_cast<double>(loop.size());
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+        const Eigen::Vector3d a = V.row(loop[k]).transpose() - centre;
+        const Eigen::Vector3d b = V.row(loop[(k + 1) % loop.size()]).transpose() - centre;
+        sum += a.cross(b);
+    }
+    return sum / 2;
+}
+
+}  // namespace
+
 double hole_area(const TriangleMesh& mesh) {
     detail::require_valid_mesh(mesh, "hole_area");
-    const Eigen::MatrixX2i boundary = oriented_boundary_edges(mesh.F);
-    detail::UnionFind loops(static_cast<std::size_t>(mesh.V.rows()));
-    for (Eigen::Index e = 0; e < boundary.rows(); ++e) {
-        loops.unite(static_cast<std::size_t>(boundary(e, 0)),
-                    static_cast<std::size_t>(boundary(e, 1)));
-    }
-    // The centroid of each loop's edge starts first: about it, round-off stays at the hole's
-    // scale, not the mesh's distance from the origin.
-    const auto n = static_cast<std::size_t>(mesh.V.rows());
-    std::vector<Eigen::Vector3d> centre(n, Eigen::Vector3d::Zero());
-    std::vector<double> count(n, 0);
-    for (Eigen::Index e = 0; e < boundary.rows(); ++e) {
-        const std::size_t loop = loops.find(static_cast<std::size_t>(boundary(e, 0)));
-        centre[loop] += mesh.V.row(boundary(e, 0)).transpose();
-        count[loop] += 1;
-    }
-    std::vector<Eigen::Vector3d> vector_area(n, Eigen::Vector3d::Zero());
-    for (Eigen::Index e = 0; e < boundary.rows(); ++e) {
-        const std::size_t loop = loops.find(static_cast<std::size_t>(boundary(e, 0)));
-        const Eigen::Vector3d c = centre[loop] / count[loop];
-        const Eigen::Vector3d a = mesh.V.row(boundary(e, 0)).transpose() - c;
-        const Eigen::Vector3d b = mesh.V.row(boundary(e, 1)).transpose() - c;
-        vector_area[loop] += a.cross(b) / 2;
-    }
     double area = 0;
-    for (const Eigen::Vector3d& v : vector_area) {
-        area += v.norm();
+    for (const std::vector<int>& loop : boundary_loops(mesh)) {
+        area += vector_area(mesh.V, loop).norm();
     }
     return area;
 }

@@ -10,6 +10,7 @@
 #include "genflow/mesh/edges.h"
 #include "genflow/mesh/face_selection.h"
 #include "genflow/mesh/primitives.h"
+#include "genflow/operators/area.h"
 
 namespace genflow {
 namespace {
@@ -40,6 +41,27 @@ TEST(HoleArea, PlanarLoopsCloseWithTheirExactArea) {
         return std::abs(c.x() - 0.5) < 0.2 && std::abs(c.y() - 0.5) < 0.2;
     });
     EXPECT_NEAR(hole_area(holed), 1 + 0.16, 1e-12);
+}
+
+// A hole that meets the rim at corners (the faces of the first row that touch the rim at a
+// vertex only, and the cells above them) is a loop of its own: its area adds to the rim's,
+// exactly as on a flat sheet, instead of cancelling against it (the two loops run opposite
+// ways about the sheet's normal).
+TEST(HoleArea, HoleTouchingTheRimAddsItsArea) {
+    const TriangleMesh grid = make_grid(10);
+    const TriangleMesh notched = without(grid, [](const Eigen::RowVector3d& c) {
+        return c.y() > 0.05 && c.y() < 0.3 && c.x() > 0.1 && c.x() < 0.4;
+    });
+    const Eigen::MatrixX2i rim = boundary_edges(grid.F);
+    const Eigen::MatrixX2i edges = boundary_edges(notched.F);
+    for (Eigen::Index e = 0; e < rim.rows(); ++e) {  // the notch leaves the rim as it was
+        EXPECT_TRUE(
+            ((edges.col(0).array() == rim(e, 0)) && (edges.col(1).array() == rim(e, 1))).any())
+            << e;
+    }
+    const double cut = surface_area(grid) - surface_area(notched);
+    EXPECT_GT(cut, 0.05);
+    EXPECT_NEAR(hole_area(notched), 1 + cut, 1e-12);
 }
 
 // A sphere's cap cut off leaves a circle of radius √(1 − h²): its disc, π (1 − h²), up to the

@@ -5,8 +5,9 @@
 
 namespace genflow {
 
-/// The area of the holes in a surface, estimated from its boundary: the sum over boundary
-/// loops (boundary edges joined at shared vertices) of the loop's vector area
+/// The area of the holes in a surface, estimated from its boundary: the sum over the loops
+/// around its gaps (boundary_loops(): a hole touching another or the border is a loop of its
+/// own, so their areas add instead of cancelling) of the loop's vector area
 /// |½ Σ_{(a→b)} (x_a − c) × (x_b − c)|, the edges oriented by their faces and c the loop's
 /// centroid. That is the area of the flat patch that closes a planar loop (a hole of radius r:
 /// π r²) and, for a bent one, of its shadow on the plane it faces most; a ragged edge barely
