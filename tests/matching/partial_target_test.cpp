@@ -14,9 +14,11 @@
 #include "genflow/exceptions.h"
 #include "genflow/matching/match.h"
 #include "genflow/matching/rigid_alignment.h"
+#include "genflow/mesh/face_selection.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
+#include "genflow/operators/normals.h"
 #include "genflow/operators/volume.h"
 #include "genflow/spatial/point_cloud_surface.h"
 #include "matching/partial_target.h"
@@ -99,6 +101,30 @@ TEST(PartialTarget, FindsOneSideOfAShapeButNotTheWholeAtAnyScale) {
     TriangleMesh point = sphere;
     point.V.setZero();
     EXPECT_THROW((void)shows_part_only(sphere, point), InvalidInput);
+}
+
+// A depth camera's view of a sphere, its points with noise of half a mean edge and their
+// normals: the surface made on them is partial, as the view is; the whole sphere's points with
+// the same noise are not (docs/benchmarks.md, "Holes that touch the rim").
+TEST(PartialTarget, FindsANoisyViewGivenAsPoints) {
+    const TriangleMesh sphere = make_icosphere(4);
+    const Eigen::MatrixX3d normals = vertex_normals(sphere);
+    const std::vector<Eigen::Index> seen =
+        vertices_used_by(single_view(sphere, Eigen::Vector3d(0.2, -1, 0.3)).F, sphere.V.rows());
+    const auto rows = [](const Eigen::MatrixX3d& all, const std::vector<Eigen::Index>& which) {
+        Eigen::MatrixX3d kept(static_cast<Eigen::Index>(which.size()), 3);
+        for (std::size_t k = 0; k < which.size(); ++k) {
+            kept.row(static_cast<Eigen::Index>(k)) = all.row(which[k]);
+        }
+        return kept;
+    };
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        const Eigen::MatrixX3d noisy = add_noise(sphere, 0.5 * mean_edge_length(sphere), seed).V;
+        EXPECT_TRUE(
+            shows_part_only(sphere, point_cloud_surface(rows(noisy, seen), rows(normals, seen))))
+            << seed;
+        EXPECT_FALSE(shows_part_only(sphere, point_cloud_surface(noisy, normals))) << seed;
+    }
 }
 
 // Onto one side of the limb, turned and moved, the one-sided rigid alignment at the template's

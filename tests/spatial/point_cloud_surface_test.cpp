@@ -15,6 +15,7 @@
 #include "genflow/mesh/repair.h"
 #include "genflow/mesh/validate.h"
 #include "genflow/operators/area.h"
+#include "genflow/operators/hole_area.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/operators/normals.h"
 #include "genflow/operators/volume.h"
@@ -76,6 +77,25 @@ TEST(PointCloudSurface, CoversAJitteredPlaneWithoutAFold) {
     EXPECT_GT(surface_area(surface), 0.97 * surface_area(grid));
     for (const auto& [edge, faces] : faces_per_edge(surface.F)) {
         ASSERT_LE(faces, 2);
+    }
+}
+
+// A sphere's points with noise of half a mean edge, as a scanner's, and their normals: the faces
+// that fans agree on close nearly all of it. Told in the tangent plane whether two faces fold
+// onto each other, a corner lifted off the plane by the noise does not turn the test (tested in
+// space, 4601 faces of 5120 were kept and the holes closed 15–26 % of the surface).
+TEST(PointCloudSurface, NoiseAlongTheNormalLeavesFewHoles) {
+    const TriangleMesh sphere = make_icosphere(4);
+    const Eigen::MatrixX3d normals = vertex_normals(sphere);
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        const TriangleMesh noisy = add_noise(sphere, 0.5 * mean_edge_length(sphere), seed);
+        const TriangleMesh surface = point_cloud_surface(noisy.V, normals);
+        EXPECT_GT(surface.F.rows(), 0.97 * static_cast<double>(sphere.F.rows())) << seed;
+        const double holes = hole_area(surface);
+        EXPECT_LT(holes / (holes + surface_area(surface)), 0.12) << seed;
+        for (const auto& [edge, faces] : faces_per_edge(surface.F)) {
+            ASSERT_LE(faces, 2);
+        }
     }
 }
 

@@ -29,7 +29,8 @@ struct PointCloudSurfaceOptions {
 /// 2. The fans' triangles are offered to the mesh held by more fans first (more tangent planes
 ///    agree on them), then the smaller circumcircle first. One is kept only if none of its
 ///    edges already has two faces or a face it would fold onto (the two diagonals of a
-///    quadrilateral): the mesh is edge-manifold.
+///    quadrilateral; told in the tangent plane at the edge, so that noise along the normal does
+///    not make a sharp bend look like a fold): the mesh is edge-manifold.
 /// 3. The faces are oriented across shared edges, better-ranked first; where they cannot agree
 ///    (faces bridging the two sides of a thin part into a Möbius band) the lower-ranked are
 ///    left out. Each component then takes the side of its corners' normals, oriented along a
