@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "genflow/mesh/edges.h"
+#include "genflow/operators/normals.h"
 #include "operators/triangle.h"
 
 namespace genflow {
@@ -19,20 +20,6 @@ struct BoundaryCorner {
     std::vector<Eigen::Index> entering;
     std::vector<Eigen::Index> leaving;
 };
-
-// Each vertex's area-weighted normal, from the faces around it.
-Eigen::MatrixX3d corner_normals(const TriangleMesh& mesh) {
-    Eigen::MatrixX3d normals = Eigen::MatrixX3d::Zero(mesh.V.rows(), 3);
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-        const Eigen::RowVector3d a = mesh.V.row(mesh.F(f, 0));
-        const Eigen::RowVector3d n =
-            (mesh.V.row(mesh.F(f, 1)) - a).cross(mesh.V.row(mesh.F(f, 2)) - a);
-        for (int k = 0; k < 3; ++k) {
-            normals.row(mesh.F(f, k)) += n;
-        }
-    }
-    return normals;
-}
 
 // The angle of the direction from `pivot` to `towards` about `normal` (not zero),
 // counter-clockwise.
@@ -62,7 +49,7 @@ void pair_across_gaps(const TriangleMesh& mesh, const Eigen::MatrixX2i& edges, i
                             false);
     }
     std::sort(around.begin(), around.end());
-    std::vector<Eigen::Index> open;
+    std::vector<std::size_t> open;
     std::vector<bool> paired(around.size(), false);
     for (std::size_t step = 0; step < 2 * around.size(); ++step) {
         const std::size_t k = step % around.size();
@@ -72,10 +59,10 @@ void pair_across_gaps(const TriangleMesh& mesh, const Eigen::MatrixX2i& edges, i
         }
         if (enters) {
             if (step < around.size()) {
-                open.push_back(static_cast<Eigen::Index>(k));
+                open.push_back(k);
             }
         } else if (!open.empty()) {
-            const auto from = static_cast<std::size_t>(open.back());
+            const std::size_t from = open.back();
             open.pop_back();
             paired[from] = paired[k] = true;
             next[static_cast<std::size_t>(std::get<1>(around[from]))] = edge;
@@ -98,7 +85,7 @@ std::vector<Eigen::Index> continuations(const TriangleMesh& mesh, const Eigen::M
             next[static_cast<std::size_t>(corner.entering[0])] = corner.leaving[0];
         } else if (!corner.entering.empty() && !corner.leaving.empty()) {
             if (normals.rows() == 0) {
-                normals = corner_normals(mesh);
+                normals = vertex_normals(mesh);
             }
             const Eigen::Vector3d normal = normals.row(static_cast<Eigen::Index>(v)).transpose();
             // Faces that cancel out about the vertex (folded onto each other) give no side to

@@ -317,8 +317,8 @@ Eigen::Vector3d normal_across(const std::vector<Neighbourhood>& hoods, Eigen::In
 // in the surface's tangent plane there: two faces that share the edge then fold onto each other
 // (they overlap where two fans took the two diagonals of one quadrilateral). In the plane, so
 // that noise along the normal does not make two faces that meet at a sharp bend look folded: a
-// sliver's corner half a spacing off the plane turned the test in space, and on a sphere's
-// points with noise of half a mean edge that kept a tenth of the faces out (docs/benchmarks.md).
+// sliver's corner half a spacing off the plane turns the test in space and leaves cracks
+// (docs/benchmarks.md, "Holes that touch the rim").
 bool folds(const Eigen::MatrixX3d& points, const std::vector<Neighbourhood>& hoods, Eigen::Index a,
            Eigen::Index b, Eigen::Index c, Eigen::Index d) {
     const Eigen::Vector3d edge = (points.row(b) - points.row(a)).transpose().normalized();

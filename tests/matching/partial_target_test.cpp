@@ -111,17 +111,10 @@ TEST(PartialTarget, FindsANoisyViewGivenAsPoints) {
     const Eigen::MatrixX3d normals = vertex_normals(sphere);
     const std::vector<Eigen::Index> seen =
         vertices_used_by(single_view(sphere, Eigen::Vector3d(0.2, -1, 0.3)).F, sphere.V.rows());
-    const auto rows = [](const Eigen::MatrixX3d& all, const std::vector<Eigen::Index>& which) {
-        Eigen::MatrixX3d kept(static_cast<Eigen::Index>(which.size()), 3);
-        for (std::size_t k = 0; k < which.size(); ++k) {
-            kept.row(static_cast<Eigen::Index>(k)) = all.row(which[k]);
-        }
-        return kept;
-    };
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
         const Eigen::MatrixX3d noisy = add_noise(sphere, 0.5 * mean_edge_length(sphere), seed).V;
-        EXPECT_TRUE(
-            shows_part_only(sphere, point_cloud_surface(rows(noisy, seen), rows(normals, seen))))
+        EXPECT_TRUE(shows_part_only(
+            sphere, point_cloud_surface(noisy(seen, Eigen::all), normals(seen, Eigen::all))))
             << seed;
         EXPECT_FALSE(shows_part_only(sphere, point_cloud_surface(noisy, normals))) << seed;
     }
