@@ -42,7 +42,9 @@ LoadedMesh load_target(const std::filesystem::path& path) {
         cloud = read_points(path);
     } else {
         loaded.mesh = read_mesh(path, &loaded.read_warnings);
-        cloud.points = loaded.mesh.F.rows() == 0 ? loaded.mesh.V : Eigen::MatrixX3d(0, 3);
+        if (loaded.mesh.F.rows() == 0) {
+            cloud = read_points(path);  // again, for the normals a PLY may give its points
+        }
     }
     if (cloud.points.rows() > 0) {
         loaded.points = cloud.points.rows();

@@ -245,14 +245,27 @@ std::size_t min_bytes_per_instance(const Element& element, Encoding encoding) {
     return bytes;
 }
 
+// A vertex property holding a normal component: nx, ny, nz, or normal_x, … as PCL names them.
+int normal_axis(std::string_view name) {
+    for (int axis = 0; axis < 3; ++axis) {
+        const char letter = "xyz"[axis];
+        if (name == std::string{'n', letter} || name == std::string("normal_") + letter) {
+            return axis;
+        }
+    }
+    return -1;
+}
+
 }  // namespace
 
-TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context) {
+TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
+                       Eigen::MatrixX3d* vertex_normals) {
     const Header header = parse_header(bytes, context);
     ValueReader reader(bytes.substr(header.data_offset), header.encoding, context);
     MeshBuilder builder(context);
     bool has_vertices = false;
     std::vector<std::int64_t> corners;
+    std::vector<Eigen::Vector3d> normals;
 
     for (const auto& element : header.elements) {
         const bool is_vertex = element.name == "vertex";
@@ -261,12 +274,16 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context) {
         int y = -1;
         int z = -1;
         int indices = -1;
+        std::array<int, 3> normal = {-1, -1, -1};
         for (int p = 0; p < static_cast<int>(element.properties.size()); ++p) {
             const auto& property = element.properties[static_cast<std::size_t>(p)];
             if (is_vertex && !property.is_list) {
                 x = property.name == "x" ? p : x;
                 y = property.name == "y" ? p : y;
                 z = property.name == "z" ? p : z;
+                if (const int axis = normal_axis(property.name); axis >= 0) {
+                    normal[static_cast<std::size_t>(axis)] = p;
+                }
             }
             if (is_face && property.is_list &&
                 (property.name == "vertex_indices" || property.name == "vertex_index" ||
@@ -289,15 +306,19 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context) {
                          std::to_string(element.count) +
                          " items, more than the file can hold (truncated?)");
         }
+        const bool with_normals = is_vertex && vertex_normals != nullptr &&
+                                  std::ranges::none_of(normal, [](int p) { return p < 0; });
         if (is_vertex) {
             builder.reserve(static_cast<std::size_t>(element.count), 0);
             has_vertices = true;
+            normals.clear();
         }
         if (element.properties.empty()) {
             continue;  // nothing to read, however many items it declares
         }
 
         double xyz[3] = {0, 0, 0};
+        double nxyz[3] = {0, 0, 0};
         for (std::uint64_t i = 0; i < element.count; ++i) {
             corners.clear();
             for (int p = 0; p < static_cast<int>(element.properties.size()); ++p) {
@@ -310,6 +331,11 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context) {
                         xyz[1] = value;
                     if (p == z)
                         xyz[2] = value;
+                    for (int axis = 0; axis < 3; ++axis) {
+                        if (with_normals && p == normal[static_cast<std::size_t>(axis)]) {
+                            nxyz[axis] = value;
+                        }
+                    }
                     continue;
                 }
                 const double count = reader.read(property.count_type, element.name);
@@ -327,6 +353,9 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context) {
             }
             if (is_vertex) {
                 builder.add_vertex(xyz[0], xyz[1], xyz[2]);
+                if (with_normals) {
+                    normals.emplace_back(nxyz[0], nxyz[1], nxyz[2]);
+                }
             } else if (is_face) {
                 builder.add_polygon(corners);
             }
@@ -334,6 +363,12 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context) {
     }
     if (!has_vertices) {
         context.fail("no 'vertex' element");
+    }
+    if (vertex_normals != nullptr) {
+        vertex_normals->resize(static_cast<Eigen::Index>(normals.size()), 3);
+        for (std::size_t i = 0; i < normals.size(); ++i) {
+            vertex_normals->row(static_cast<Eigen::Index>(i)) = normals[i].transpose();
+        }
     }
     return builder.finish();
 }

@@ -43,6 +43,13 @@ TriangleMesh read_mesh(const std::filesystem::path& path, std::vector<std::strin
         throw IoError(name + ": unknown mesh format '" + path.extension().string() +
                       "' (expected .obj, .ply, .off or .stl)");
     }
+    return parse_mesh(detail::read_mesh_file(path), *format, name, warnings);
+}
+
+namespace detail {
+
+std::string read_mesh_file(const std::filesystem::path& path) {
+    const std::string name = path.string();
     std::error_code error;
     if (std::filesystem::is_directory(path, error)) {
         throw IoError(name + ": is a directory, not a mesh file");
@@ -66,7 +73,9 @@ TriangleMesh read_mesh(const std::filesystem::path& path, std::vector<std::strin
     if (bytes.empty()) {
         throw IoError(name + ": empty file");
     }
-    return parse_mesh(bytes, *format, name, warnings);
+    return bytes;
 }
+
+}  // namespace detail
 
 }  // namespace genflow

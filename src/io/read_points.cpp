@@ -7,6 +7,7 @@
 #include "genflow/exceptions.h"
 #include "genflow/io/read_mesh.h"
 #include "io/parse_context.h"
+#include "io/readers.h"
 
 namespace genflow {
 
@@ -65,6 +66,21 @@ PointCloud parse_xyz(const std::filesystem::path& path) {
     return {matrix_of(points), matrix_of(normals)};
 }
 
+// A PLY file's vertices and, where the vertex element has them, their normals.
+PointCloud parse_ply_points(const std::filesystem::path& path, std::vector<std::string>* warnings) {
+    const std::string name = path.string();
+    PointCloud cloud;
+    cloud.points =
+        detail::parse_ply(detail::read_mesh_file(path), {name, warnings}, &cloud.normals).V;
+    for (Eigen::Index i = 0; i < cloud.normals.rows(); ++i) {
+        if (!cloud.normals.row(i).allFinite() || cloud.normals.row(i).squaredNorm() == 0) {
+            throw IoError(name + ": point " + std::to_string(i) + ": the normal is " +
+                          (cloud.normals.row(i).allFinite() ? "zero" : "not finite"));
+        }
+    }
+    return cloud;
+}
+
 }  // namespace
 
 bool is_xyz_file(const std::filesystem::path& path) {
@@ -72,8 +88,14 @@ bool is_xyz_file(const std::filesystem::path& path) {
 }
 
 PointCloud read_points(const std::filesystem::path& path, std::vector<std::string>* warnings) {
-    PointCloud cloud =
-        is_xyz_file(path) ? parse_xyz(path) : PointCloud{read_mesh(path, warnings).V, {}};
+    PointCloud cloud;
+    if (is_xyz_file(path)) {
+        cloud = parse_xyz(path);
+    } else if (mesh_format_from_extension(path) == MeshFormat::Ply) {
+        cloud = parse_ply_points(path, warnings);
+    } else {
+        cloud.points = read_mesh(path, warnings).V;
+    }
     if (cloud.points.rows() == 0) {
         throw IoError(path.string() + ": no point");
     }

@@ -260,7 +260,8 @@ TEST(MatchCli, TakesLandmarksAndRefusesABadFileWritingNothing) {
 }
 
 // An .xyz file, or a mesh file without faces, is a point cloud target: matched on a surface
-// made on its points, reported in the summary; a bad one is refused before anything is written.
+// made on its points (with their normals where an XYZ or PLY gives them), reported in the
+// summary; a bad one is refused before anything is written.
 TEST(MatchCli, TakesAPointCloudTargetAndRefusesABadOneWritingNothing) {
     const test::TemporaryDirectory directory;
     const TriangleMesh limb = make_limb(3);
@@ -275,6 +276,13 @@ TEST(MatchCli, TakesAPointCloudTargetAndRefusesABadOneWritingNothing) {
         xyz << "# x y z nx ny nz\n";
         for (Eigen::Index i = 0; i < points.rows(); ++i) {
             xyz << points.row(i) << ' ' << normals.row(i) << '\n';
+        }
+        std::ofstream ply(directory / "scan.ply");
+        ply << "ply\nformat ascii 1.0\nelement vertex " << points.rows()
+            << "\nproperty double x\nproperty double y\nproperty double z\n"
+               "property double nx\nproperty double ny\nproperty double nz\nend_header\n";
+        for (Eigen::Index i = 0; i < points.rows(); ++i) {
+            ply << points.row(i) << ' ' << normals.row(i) << '\n';
         }
         std::ofstream bare(directory / "bare.xyz");
         for (Eigen::Index i = 0; i < points.rows(); ++i) {
@@ -293,6 +301,11 @@ TEST(MatchCli, TakesAPointCloudTargetAndRefusesABadOneWritingNothing) {
     EXPECT_TRUE(summary["target_normals"].get<bool>());
     EXPECT_LT(summary["mean_distance_over_diagonal"].get<double>(), 0.01);
     EXPECT_EQ(read_mesh(out).V.rows(), limb.V.rows());
+    std::filesystem::remove(out);
+    // A PLY's vertex normals are the points' normals, as a scanner exports them.
+    const auto ply = run_genflow(command + quoted(directory / "scan.ply") + flags + " --json");
+    ASSERT_EQ(ply.exit_code, 0) << ply.err;
+    EXPECT_TRUE(nlohmann::json::parse(ply.out)["target_normals"].get<bool>());
     std::filesystem::remove(out);
     // Without normals it matches too, and says what normals would settle.
     const auto bare = run_genflow(command + quoted(directory / "bare.xyz") + flags);

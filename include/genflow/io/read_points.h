@@ -19,11 +19,13 @@ struct PointCloud {
 
 /// Reads a point cloud: an XYZ file (one point per line, `x y z`, or `x y z nx ny nz` with its
 /// normal on every line; further numbers are skipped; `#` starts a comment), or the vertices of
-/// an OBJ, PLY, OFF or STL file (its faces, if it has any, are not read; nor are its normals).
+/// an OBJ, PLY, OFF or STL file (its faces, if it has any, are not read). A PLY file's vertex
+/// normals are read where its vertex element has them (nx, ny, nz, or normal_x, normal_y,
+/// normal_z as PCL writes them), as a scanner exports them; other formats' normals are not.
 /// \param warnings  if given, receives the mesh reader's warnings.
 /// \throws IoError "<path>: <problem>" (for XYZ "<path>: line N: <problem>") if the file cannot
-///         be read, is malformed, holds a non-finite coordinate, a zero normal, no point, or
-///         normals on some lines only.
+///         be read, is malformed, holds a non-finite coordinate, a zero or non-finite normal,
+///         no point, or normals on some lines only.
 [[nodiscard]] PointCloud read_points(const std::filesystem::path& path,
                                      std::vector<std::string>* warnings = nullptr);
 
