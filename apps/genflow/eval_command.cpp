@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -17,6 +16,7 @@
 #include "cli_support.h"
 #include "commands.h"
 #include "genflow/exceptions.h"
+#include "genflow/io/read_file.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/read_part_model.h"
 #include "genflow/io/write_mesh.h"
@@ -43,12 +43,9 @@ struct EvalOptions {
 };
 
 nlohmann::json read_pairs(const std::filesystem::path& path) {
-    std::ifstream stream(path);
-    if (!stream) {
-        throw IoError(path.string() + ": cannot open");
-    }
+    const std::string text = read_file(path);
     try {
-        nlohmann::json pairs = nlohmann::json::parse(stream);
+        nlohmann::json pairs = nlohmann::json::parse(text);
         if (!pairs.is_array()) {
             throw IoError(path.string() + ": expected a JSON array of pairs");
         }

@@ -10,16 +10,6 @@
 
 namespace genflow::detail {
 
-std::string read_text(const std::filesystem::path& path) {
-    std::ifstream stream(path, std::ios::binary);
-    if (!stream) {
-        throw IoError(path.string() + ": cannot open");
-    }
-    std::ostringstream text;
-    text << stream.rdbuf();
-    return text.str();
-}
-
 void MeshBuilder::add_polygon(const std::vector<std::int64_t>& corners) {
     if (corners.size() < 3) {
         ++dropped_polygons_;

@@ -75,9 +75,18 @@ private:
 
 /// A cursor over text that reads whitespace-separated tokens, numbers and lines without ever
 /// reading past the end.
+/// The UTF-8 encoding of U+FEFF, which some editors put at the start of a text file.
+inline constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+
 class TextScanner {
 public:
-    explicit TextScanner(std::string_view text) : text_(text) {}
+    /// A UTF-8 byte order mark at the start (some Windows editors write one) is skipped: it is
+    /// not content, and read as such it spoils the first line.
+    explicit TextScanner(std::string_view text) : text_(text) {
+        if (text_.starts_with(kByteOrderMark)) {
+            pos_ = kByteOrderMark.size();
+        }
+    }
 
     [[nodiscard]] bool at_end() const { return pos_ >= text_.size(); }
     [[nodiscard]] std::size_t bytes_left() const { return text_.size() - pos_; }
@@ -94,10 +103,6 @@ private:
     std::string_view text_;
     std::size_t pos_ = 0;
 };
-
-/// The whole of a text file.
-/// \throws IoError "<path>: cannot open" if it cannot be read.
-[[nodiscard]] std::string read_text(const std::filesystem::path& path);
 
 /// Splits a line into whitespace-separated tokens, reusing the storage of `tokens` (the readers
 /// call this once per line, so it must not allocate every time).

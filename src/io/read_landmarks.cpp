@@ -6,6 +6,7 @@
 #include <string>
 
 #include "genflow/exceptions.h"
+#include "genflow/io/read_file.h"
 #include "io/parse_context.h"
 
 namespace genflow {
@@ -35,7 +36,7 @@ Eigen::Index parse_index(std::string_view token, Eigen::Index count, const char*
 
 std::vector<Landmark> read_landmarks(const std::filesystem::path& path,
                                      Eigen::Index template_vertices, const TriangleMesh& target) {
-    const std::string text = detail::read_text(path);
+    const std::string text = read_file(path);
     detail::TextScanner scanner(text);
     std::vector<std::string_view> tokens;
     std::vector<Landmark> landmarks;

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "genflow/io/read_mesh.h"
 
-#include <fstream>
-
+#include "genflow/io/read_file.h"
 #include "io/readers.h"
 
 namespace genflow {
@@ -49,29 +48,9 @@ TriangleMesh read_mesh(const std::filesystem::path& path, std::vector<std::strin
 namespace detail {
 
 std::string read_mesh_file(const std::filesystem::path& path) {
-    const std::string name = path.string();
-    std::error_code error;
-    if (std::filesystem::is_directory(path, error)) {
-        throw IoError(name + ": is a directory, not a mesh file");
-    }
-    std::ifstream file(path, std::ios::binary);
-    if (!file) {
-        throw IoError(
-            name + ": cannot open for reading (" +
-            (std::filesystem::exists(path, error) ? "permission denied?" : "no such file") + ")");
-    }
-    file.seekg(0, std::ios::end);
-    const std::streamoff size = file.tellg();
-    file.seekg(0, std::ios::beg);
-    if (size < 0) {
-        throw IoError(name + ": cannot determine the file size");
-    }
-    std::string bytes(static_cast<std::size_t>(size), '\0');
-    if (!file.read(bytes.data(), size)) {
-        throw IoError(name + ": read error");
-    }
+    std::string bytes = read_file(path);
     if (bytes.empty()) {
-        throw IoError(name + ": empty file");
+        throw IoError(path.string() + ": empty file");
     }
     return bytes;
 }

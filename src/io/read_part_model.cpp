@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "genflow/exceptions.h"
+#include "genflow/io/read_file.h"
 #include "io/parse_context.h"
 
 namespace genflow {
@@ -114,9 +115,11 @@ void move_to_pose(const std::filesystem::path& file, const json& document, const
 
 // The non-empty, non-comment lines of a text file, split on whitespace.
 std::vector<std::vector<std::string>> rows(const std::filesystem::path& file) {
-    std::istringstream text(detail::read_text(file));
+    const std::string bytes = read_file(file);
+    detail::TextScanner text(bytes);
     std::vector<std::vector<std::string>> result;
-    for (std::string line; std::getline(text, line);) {
+    while (!text.at_end()) {
+        const std::string line(text.next_line());
         const auto first = line.find_first_not_of(" \t\r");
         if (first == std::string::npos || line[first] == '#') {
             continue;
@@ -295,7 +298,7 @@ Eigen::MatrixXd read_weights(const std::filesystem::path& file, Eigen::Index ver
 PartModel read_part_model(const PartFiles& files, Eigen::Index vertices) {
     json document;
     try {
-        document = json::parse(detail::read_text(files.tree));
+        document = json::parse(read_file(files.tree));
     } catch (const json::exception& e) {
         fail(files.tree, std::string("not valid JSON (") + e.what() + ")");
     }

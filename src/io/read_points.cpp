@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "genflow/exceptions.h"
+#include "genflow/io/read_file.h"
 #include "genflow/io/read_mesh.h"
 #include "io/parse_context.h"
 #include "io/readers.h"
@@ -23,7 +24,7 @@ Eigen::MatrixX3d matrix_of(const std::vector<Eigen::Vector3d>& rows) {
 }
 
 PointCloud parse_xyz(const std::filesystem::path& path) {
-    const std::string text = detail::read_text(path);
+    const std::string text = read_file(path);
     detail::TextScanner scanner(text);
     std::vector<std::string_view> tokens;
     std::vector<Eigen::Vector3d> points;

@@ -4,13 +4,14 @@
 #include <string>
 
 #include "genflow/exceptions.h"
+#include "genflow/io/read_file.h"
 #include "io/parse_context.h"
 
 namespace genflow {
 
 std::vector<Eigen::Index> read_reference_points(const std::filesystem::path& path,
                                                 Eigen::Index vertex_count) {
-    const std::string text = detail::read_text(path);
+    const std::string text = read_file(path);
     detail::TextScanner scanner(text);
     std::vector<std::string_view> tokens;
     std::vector<Eigen::Index> vertices;

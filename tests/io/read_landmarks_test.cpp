@@ -9,11 +9,12 @@
 namespace genflow {
 namespace {
 
+// (The file starts with a UTF-8 byte order mark, as some editors write one.)
 TEST(ReadLandmarks, ReadsPointsAndTargetVerticesWithComments) {
     const test::TemporaryDirectory directory;
     const TriangleMesh target = test::noisy_icosphere(1);
     test::write_bytes(directory / "marks.txt",
-                      "# template vertex, then a point or a target vertex\n"
+                      "\xEF\xBB\xBF# template vertex, then a point or a target vertex\n"
                       "3 0.5 -1 2e-1\r\n"
                       "\n"
                       "0 7   # the tip\n"

@@ -92,6 +92,21 @@ TEST(ReadMesh, AsciiPly) {
         MeshFormat::Ply));
 }
 
+// A UTF-8 byte order mark before the first line (some Windows editors write one) is not read as
+// content: it used to hide the OBJ's first vertex and shift every index by one.
+TEST(ReadMesh, TextFilesStartingWithAByteOrderMark) {
+    const std::string mark = "\xEF\xBB\xBF";
+    expect_square(
+        parse(mark + "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n", MeshFormat::Obj));
+    expect_square(parse(mark + "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n",
+                        MeshFormat::Off));
+    expect_square(parse(mark + "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\n"
+                               "property double y\nproperty double z\nelement face 2\nproperty "
+                               "list uchar int vertex_index\nend_header\n"
+                               "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n",
+                        MeshFormat::Ply));
+}
+
 TEST(ReadMesh, BinaryPlyInBothByteOrdersWithPolygonsAndExtraElements) {
     for (const bool big : {false, true}) {
         std::vector<std::string> warnings;

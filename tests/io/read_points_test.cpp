@@ -12,7 +12,7 @@ namespace {
 TEST(ReadPoints, ReadsXyzWithNormalsAndCommentsAndTheVerticesOfAMeshFile) {
     const test::TemporaryDirectory directory;
     test::write_bytes(directory / "scan.XYZ",
-                      "# x y z, then a normal\n"
+                      "\xEF\xBB\xBF# x y z, then a normal\n"
                       "0 0 0 0 0 1\r\n"
                       "\n"
                       "1 2.5 -3e-1 0 2 0  # a comment\n"
