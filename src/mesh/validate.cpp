@@ -91,14 +91,17 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
     r.num_vertices = n;
     r.num_faces = m;
 
-    Tally non_finite{"vertex"};
+    Tally non_finite{"vertex"}, huge{"vertex"};
     for (Eigen::Index i = 0; i < n; ++i) {
         if (!std::isfinite(mesh.V(i, 0)) || !std::isfinite(mesh.V(i, 1)) ||
             !std::isfinite(mesh.V(i, 2))) {
             non_finite.add(i);
+        } else if (mesh.V.row(i).cwiseAbs().maxCoeff() > kLargestCoordinate) {
+            huge.add(i);
         }
     }
     r.non_finite_vertices = non_finite.count;
+    r.huge_vertices = huge.count;
 
     // Per-face checks; collect the faces fit for topology.
     Tally out_of_range{"face"}, repeated{"face"}, zero_area{"face"}, sliver{"face"};
@@ -264,7 +267,8 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
         r.genus = (2 * r.components - r.boundary_loops - r.euler_characteristic) / 2;
     }
     if (r.closed() && r.manifold() && r.inconsistent_orientation_edges == 0 &&
-        non_finite.count == 0 && out_of_range.count == 0 && !good_faces.empty()) {
+        non_finite.count == 0 && huge.count == 0 && out_of_range.count == 0 &&
+        !good_faces.empty()) {
         r.inward_oriented = enclosed_volume(mesh) < 0;
     }
 
@@ -277,6 +281,7 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
         issues.push_back({Severity::Error, "mesh has no faces"});
     }
     report(issues, Severity::Error, non_finite, "vertices with non-finite coordinates");
+    report(issues, Severity::Error, huge, "vertices with a coordinate beyond ±1e50");
     report(issues, Severity::Error, out_of_range, "faces with vertex indices out of range");
     report(issues, Severity::Warning, repeated, "faces with a repeated vertex index");
     report(issues, Severity::Warning, zero_area, "zero-area faces");

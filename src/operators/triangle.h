@@ -10,6 +10,7 @@
 
 #include "genflow/exceptions.h"
 #include "genflow/mesh.h"
+#include "genflow/mesh/validate.h"
 
 namespace genflow::detail {
 
@@ -32,7 +33,8 @@ bool all_finite(const Eigen::PlainObjectBase<Derived>& V) {
 }
 
 /// Throws InvalidInput naming `function` unless every index of F lies in [0, #V) and every
-/// coordinate of V is finite. O(#V + #F): cheap enough for every public entry point.
+/// coordinate of V is finite and within ±kLargestCoordinate. O(#V + #F): cheap enough for every
+/// public entry point.
 inline void require_valid_mesh(const TriangleMesh& mesh, const char* function) {
     if (mesh.F.size() > 0 && (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows())) {
         throw InvalidInput(std::string(function) + ": face indices must lie in [0, " +
@@ -42,6 +44,10 @@ inline void require_valid_mesh(const TriangleMesh& mesh, const char* function) {
     }
     if (!all_finite(mesh.V)) {
         throw InvalidInput(std::string(function) + ": vertex positions must be finite");
+    }
+    if (mesh.V.size() > 0 && mesh.V.cwiseAbs().maxCoeff() > kLargestCoordinate) {
+        throw InvalidInput(std::string(function) +
+                           ": vertex positions must lie within ±1e50 (kLargestCoordinate)");
     }
 }
 

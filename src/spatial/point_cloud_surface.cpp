@@ -494,6 +494,9 @@ void check_points(const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& normal
     if (!detail::all_finite(points)) {
         throw InvalidInput("point_cloud_surface: a point has a non-finite coordinate");
     }
+    if (points.cwiseAbs().maxCoeff() > kLargestCoordinate) {
+        throw InvalidInput("point_cloud_surface: a point has a coordinate beyond ±1e50");
+    }
     if (options.neighbours < 4) {
         throw InvalidInput("point_cloud_surface: neighbours must be at least 4");
     }

@@ -2,6 +2,7 @@
 // The genflow tool end to end: help, info (text and JSON), demo, and the one-line errors with
 // exit code 2 for every kind of bad input.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <fstream>
@@ -111,6 +112,11 @@ TEST(Cli, BadFilesAreRefusedWithOneLineNamingTheFile) {
          "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\n"
          "property float y\nproperty float z\nend_header\n\x01\x02\x03",
          "more than the file can hold"},
+        {"huge.ply",
+         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+         "end_header\n0 0 0\n1e308 0 0\n0 1 0\n3 0 1 2\n",
+         "a coordinate beyond ±1e50"},
         {"text.stl", "not an stl at all", "not an STL file"},
         {"mesh.dat", "whatever", "unknown mesh format"},
     };
@@ -130,6 +136,11 @@ TEST(Cli, BadFilesAreRefusedWithOneLineNamingTheFile) {
     const auto missing = run_genflow("info " + quoted(directory / "missing.obj"));
     EXPECT_EQ(missing.exit_code, 2);
     EXPECT_NE(missing.err.find("no such file"), std::string::npos);
+    // A named pipe is refused at once, not read until something writes into it.
+    ASSERT_EQ(::mkfifo((directory / "pipe.ply").c_str(), 0600), 0);
+    const auto pipe = run_genflow("info " + quoted(directory / "pipe.ply"));
+    EXPECT_EQ(pipe.exit_code, 2);
+    EXPECT_NE(pipe.err.find("pipe.ply: not a regular file"), std::string::npos) << pipe.err;
 }
 
 TEST(Cli, DistanceBetweenParallelSquares) {

@@ -58,6 +58,20 @@ TEST(Validate, NonFiniteCoordinatesAreErrors) {
     EXPECT_EQ(report.first_error(), "2 vertices with non-finite coordinates (first: vertex 2)");
 }
 
+// Coordinates so large that squared areas would overflow (1e308 made the area inf and the
+// volume's sign meaningless) are refused, as non-finite ones are.
+TEST(Validate, CoordinatesBeyondTheLargestAreErrors) {
+    TriangleMesh mesh = two_triangles();
+    mesh.V(1, 2) = -1e308;
+    mesh.V(3, 0) = 2 * kLargestCoordinate;
+    const ValidationReport report = validate(mesh);
+    EXPECT_FALSE(report.ok());
+    EXPECT_EQ(report.huge_vertices, 2);
+    EXPECT_EQ(report.first_error(), "2 vertices with a coordinate beyond ±1e50 (first: vertex 1)");
+    mesh.V(1, 2) = mesh.V(3, 0) = kLargestCoordinate;
+    EXPECT_TRUE(validate(mesh).ok());
+}
+
 TEST(Validate, OutOfRangeIndicesAreErrors) {
     TriangleMesh mesh = two_triangles();
     mesh.F(1, 2) = 4;

@@ -21,6 +21,11 @@ struct ValidationIssue {
     std::string message;
 };
 
+/// The largest coordinate magnitude a mesh may have. Computed quantities go up to the fourth
+/// power of lengths (squared areas), which then stay below 1e200, far from overflow (a double
+/// ends at 1.8e308); any physical unit fits (the observable universe is 1e27 m across).
+inline constexpr double kLargestCoordinate = 1e50;
+
 /// Thresholds of `validate()`.
 struct ValidationOptions {
     /// A face whose smallest angle is below this (in degrees), but whose area is not zero, is
@@ -36,16 +41,17 @@ struct ValidationReport {
     Eigen::Index num_faces = 0;
     Eigen::Index num_edges = 0;  ///< undirected edges
 
-    Eigen::Index non_finite_vertices = 0;    ///< vertices with a NaN or infinite coordinate
-    Eigen::Index out_of_range_faces = 0;     ///< faces with an index outside [0, #V)
-    Eigen::Index repeated_index_faces = 0;   ///< faces such as (a, a, b)
-    Eigen::Index zero_area_faces = 0;        ///< area zero up to rounding
-    Eigen::Index sliver_faces = 0;           ///< smallest angle below the threshold
-    Eigen::Index duplicate_faces = 0;        ///< extra copies of a face (same vertex set)
-    Eigen::Index non_manifold_edges = 0;     ///< edges shared by more than two faces
-    Eigen::Index non_manifold_vertices = 0;  ///< vertices whose faces form several fans
-    Eigen::Index boundary_edges = 0;         ///< edges of exactly one face
-    Eigen::Index boundary_loops = 0;         ///< connected chains of boundary edges
+    Eigen::Index non_finite_vertices = 0;  ///< vertices with a NaN or infinite coordinate
+    Eigen::Index huge_vertices = 0;  ///< vertices with a coordinate beyond ±kLargestCoordinate
+    Eigen::Index out_of_range_faces = 0;              ///< faces with an index outside [0, #V)
+    Eigen::Index repeated_index_faces = 0;            ///< faces such as (a, a, b)
+    Eigen::Index zero_area_faces = 0;                 ///< area zero up to rounding
+    Eigen::Index sliver_faces = 0;                    ///< smallest angle below the threshold
+    Eigen::Index duplicate_faces = 0;                 ///< extra copies of a face (same vertex set)
+    Eigen::Index non_manifold_edges = 0;              ///< edges shared by more than two faces
+    Eigen::Index non_manifold_vertices = 0;           ///< vertices whose faces form several fans
+    Eigen::Index boundary_edges = 0;                  ///< edges of exactly one face
+    Eigen::Index boundary_loops = 0;                  ///< connected chains of boundary edges
     Eigen::Index inconsistent_orientation_edges = 0;  ///< two faces run the edge the same way
     Eigen::Index unreferenced_vertices = 0;           ///< vertices no face uses
     Eigen::Index components = 0;                      ///< connected components of the faces
