@@ -42,6 +42,7 @@
 #include "genflow/operators/volume.h"
 #include "genflow/spatial/point_cloud_surface.h"
 #include "match_flags.h"
+#include "number_checks.h"
 
 namespace genflow::cli {
 
@@ -782,14 +783,14 @@ void register_benchmark_command(CLI::App& app) {
         "within and across subjects, the PCK curve, mirrored pairs and the time per pair");
     command->add_option("directory", options->directory, "The benchmark's shapes")->required();
     command->add_option("--pairs", options->pairs, "Ordered pairs to draw (half within subjects)")
-        ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+        ->check(number_in(1, 1000000))
         ->capture_default_str();
     command->add_flag("--all", options->all, "Every ordered pair instead of a sample");
     command->add_option("--seed", options->seed, "Seed of the sample")->capture_default_str();
     command
         ->add_option("--subject-size", options->subject_size,
                      "Shapes in name order form subjects of this many (FAUST: 10); 0: one subject")
-        ->check(CLI::NonNegativeNumber)
+        ->check(non_negative_number())
         ->capture_default_str();
     command->add_option("--output-dir", options->output_dir,
                         "Write each pair's result (pairs/FROM-TO.json), its map (pairs/"
@@ -806,7 +807,7 @@ void register_benchmark_command(CLI::App& app) {
                      "Give each pair's match this many landmarks from the ground truth: reference "
                      "points spread over the template, as a user would click them (onto a view "
                      "or a holed target, among the points it holds)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(non_negative_number());
     command->add_flag("--target-points", options->target.points,
                       "Give each pair's match its target as a point cloud, its vertices alone "
                       "(with --target-view, those of the view, as a depth camera gives them; the "
@@ -823,17 +824,17 @@ void register_benchmark_command(CLI::App& app) {
                      "Move each point of --target-points, or else each vertex of the target, by "
                      "Gaussian noise of this σ, in mean edge lengths of the target (the same draw "
                      "for a pair in every run)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(non_negative_number());
     command
         ->add_option("--target-holes", options->target.holes,
                      "Punch this many holes (discs of 0.03 diagonals) into each pair's target, "
                      "or into its view; the rows add mean_seen")
-        ->check(CLI::Range(0, 1000));
+        ->check(number_in(0, 1000));
     command
         ->add_option("--target-fragments", options->target.fragments,
                      "Add this many loose fragments (discs of 0.02 diagonals copied off the "
                      "surface) to each pair's target, as the stray pieces of a scan")
-        ->check(CLI::Range(0, 1000));
+        ->check(number_in(0, 1000));
     command->add_flag("--target-ragged", options->target.ragged,
                       "Make the target's boundary ragged (each face at it dropped with probability "
                       "1/2), as a scan's edge; with --target-view, --target-holes or "
@@ -843,7 +844,7 @@ void register_benchmark_command(CLI::App& app) {
                      "Cut off this share of each pair's target's extent along a random "
                      "direction, as a part beyond a scanner's frame (0.15 of a standing body's "
                      "height takes the feet); the rows add mean_seen")
-        ->check(CLI::Range(0.0, 0.9));
+        ->check(number_in(0.0, 0.9));
     command->add_flag("--json", options->json, "Print the summary as JSON instead of tables");
     command
         ->add_option("--method", options->method,

@@ -11,6 +11,7 @@
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/read_points.h"
 #include "genflow/spatial/point_cloud_surface.h"
+#include "number_checks.h"
 
 namespace genflow::cli {
 
@@ -62,13 +63,37 @@ LoadedMesh load_target(const std::filesystem::path& path) {
     return loaded;
 }
 
+std::string printable(std::string_view text) {
+    std::string result;
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (c == '\n') {
+            result += "\\n";
+        } else if (c == '\t') {
+            result += "\\t";
+        } else if (c == '\r') {
+            result += "\\r";
+        } else if (c == '\\') {
+            result += "\\\\";
+        } else if (byte < 0x20 || byte == 0x7f) {
+            char escaped[5];
+            std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<unsigned>(byte));
+            result += escaped;
+        } else {
+            result += c;
+        }
+    }
+    return result;
+}
+
 void print_warnings(const LoadedMesh& loaded) {
     for (const auto& warning : loaded.read_warnings) {
-        std::cerr << "warning: " << warning << '\n';
+        std::cerr << "warning: " << printable(warning) << '\n';
     }
     for (const auto& issue : loaded.report.issues) {
         if (issue.severity == Severity::Warning) {
-            std::cerr << "warning: " << loaded.path.string() << ": " << issue.message << '\n';
+            std::cerr << "warning: " << printable(loaded.path.string()) << ": " << issue.message
+                      << '\n';
         }
     }
 }
@@ -85,20 +110,6 @@ void create_output_directory(const std::filesystem::path& directory) {
     if (error) {
         throw IoError(directory.string() + ": cannot create directory (" + error.message() + ")");
     }
-}
-
-CLI::Validator non_negative_or_infinity() {
-    // CLI::NonNegativeNumber stops at the largest double; a threshold may be inf ("never").
-    return CLI::Validator(
-        [](const std::string& text) {
-            char* end = nullptr;
-            const double value = std::strtod(text.c_str(), &end);
-            if (end == text.c_str() || *end != '\0' || std::isnan(value) || value < 0) {
-                return "Value " + text + " is not a number >= 0 (or inf)";
-            }
-            return std::string();
-        },
-        "NONNEGATIVE or inf");
 }
 
 void add_second_opinion_option(CLI::App& command, double& threshold) {

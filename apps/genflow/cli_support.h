@@ -43,6 +43,10 @@ LoadedMesh load_mesh(const std::filesystem::path& path);
 /// without faces) made a surface on its points by point_cloud_surface().
 LoadedMesh load_target(const std::filesystem::path& path);
 
+/// `text` safe to print on a terminal as one line: control characters (a newline or an escape
+/// sequence in a file's name) written as \n, \t, \r, \\ or \xNN; other bytes (UTF-8) kept.
+[[nodiscard]] std::string printable(std::string_view text);
+
 /// Prints "warning: <line>" on stderr for each reader warning and each validation warning.
 void print_warnings(const LoadedMesh& loaded);
 
@@ -52,10 +56,6 @@ std::string frame_name(int step);
 /// Creates `directory` (and its parents) for --frames, --output-dir and the like; throws IoError
 /// naming it on failure.
 void create_output_directory(const std::filesystem::path& directory);
-
-/// Checks a threshold option: a number >= 0, or inf for "never" (CLI::NonNegativeNumber refuses
-/// inf).
-[[nodiscard]] CLI::Validator non_negative_or_infinity();
 
 /// `--second-opinion-above X` (MatchOptions::second_opinion), shared by match and eval.
 void add_second_opinion_option(CLI::App& command, double& threshold);

@@ -17,6 +17,7 @@
 #include "genflow/io/write_mesh.h"
 #include "genflow/mesh/primitives.h"
 #include "match_job.h"
+#include "number_checks.h"
 
 namespace genflow::cli {
 
@@ -137,7 +138,7 @@ void register_demo_command(CLI::App& app) {
     command
         ->add_option("--level", options->level,
                      "Resolution of the generated meshes (10·4^level + 2 vertices)")
-        ->check(CLI::Range(2, 6))
+        ->check(number_in(2, 6))
         ->capture_default_str();
     command->add_flag("--quiet", options->quiet, "No progress bar");
     command->callback([options] { run_demo(*options); });

@@ -10,6 +10,7 @@
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/surface_distance.h"
 #include "mesh_summary.h"
+#include "number_checks.h"
 
 namespace genflow::cli {
 
@@ -84,12 +85,12 @@ void register_distance_command(CLI::App& app) {
     command->add_option("a", options->a, "First mesh")->required();
     command->add_option("b", options->b, "Second mesh")->required();
     command->add_option("--alpha", options->alpha, "Exponent α of the pseudo-Hausdorff distance")
-        ->check(CLI::Range(0.5, 1e6))
+        ->check(number_in(0.5, 1e6))
         ->capture_default_str();
     command
         ->add_option("--eps", options->epsilon,
                      "Its ε, a length (default: mean edge length of the second mesh)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_length());
     command->add_flag("--json", options->json, "Print one JSON object instead of text");
     command->callback([options] { run_distance(*options); });
 }

@@ -4,10 +4,34 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "cli_support.h"
 #include "commands.h"
 #include "genflow/exceptions.h"
+
+namespace {
+
+// A parse error as one line: a command that is not one named as such, and the help to read that
+// of the command given.
+std::string parse_error_message(const CLI::App& app, const CLI::ParseError& error, int argc,
+                                char** argv) {
+    std::string command = "genflow";
+    for (const CLI::App* subcommand : app.get_subcommands()) {
+        command += " " + subcommand->get_name();
+    }
+    if (command == "genflow" && argc > 1 && argv[1][0] != '-') {
+        std::string names;
+        for (const CLI::App* subcommand : app.get_subcommands({})) {
+            names += (names.empty() ? "" : ", ") + subcommand->get_name();
+        }
+        return "unknown command '" + genflow::cli::printable(argv[1]) + "' (commands: " + names +
+               ")";
+    }
+    return genflow::cli::printable(error.what()) + " (run '" + command + " --help')";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     using namespace genflow::cli;
@@ -29,16 +53,16 @@ int main(int argc, char** argv) {
         if (e.get_exit_code() == 0) {  // --help, --version
             return app.exit(e);
         }
-        std::cerr << "genflow: " << e.what() << " (run 'genflow --help')\n";
+        std::cerr << "genflow: " << parse_error_message(app, e, argc, argv) << '\n';
         return kBadInput;
     } catch (const genflow::IoError& e) {
-        std::cerr << "genflow: " << e.what() << '\n';
+        std::cerr << "genflow: " << printable(e.what()) << '\n';
         return kBadInput;
     } catch (const genflow::InvalidInput& e) {
-        std::cerr << "genflow: " << e.what() << '\n';
+        std::cerr << "genflow: " << printable(e.what()) << '\n';
         return kBadInput;
     } catch (const std::exception& e) {
-        std::cerr << "genflow: " << e.what() << '\n';
+        std::cerr << "genflow: " << printable(e.what()) << '\n';
         return kFailure;
     }
     return kSuccess;

@@ -49,7 +49,7 @@ void require_writable_format(const std::string& path) {
 // repair_surface() makes them: say what it did.
 void print_repairs(const std::string& path, const std::string& repairs) {
     if (!repairs.empty()) {
-        std::cerr << "warning: " << path << ": matched as repaired (" << repairs
+        std::cerr << "warning: " << printable(path) << ": matched as repaired (" << repairs
                   << "); the output keeps every vertex\n";
     }
 }
@@ -58,14 +58,14 @@ void print_point_cloud(const LoadedMesh& target) {
     if (target.points == 0) {
         return;
     }
-    std::cerr << "note: " << target.path.string() << ": a point cloud of " << target.points
-              << " points" << (target.normals ? " with normals" : "")
+    std::cerr << "note: " << printable(target.path.string()) << ": a point cloud of "
+              << target.points << " points" << (target.normals ? " with normals" : "")
               << ", matched on a surface of " << target.mesh.F.rows() << " triangles on them\n";
     if (!target.normals) {
-        std::cerr << "warning: " << target.path.string()
+        std::cerr << "warning: " << printable(target.path.string())
                   << ": no normals: where two sheets face each other closer than the points' "
                      "spacing (an arm against the torso), the surface may bridge them; give "
-                     "'x y z nx ny nz' lines where the scanner has normals\n";
+                     "'x y z nx ny nz' lines (or a PLY's nx ny nz) where the scanner has normals\n";
     }
 }
 
@@ -134,13 +134,13 @@ void run_match(const MatchCommandOptions& options) {
         }
     }
     if (summary["partial_target"].get<bool>() && extent_automatic && !options.json) {
-        std::cerr << "note: " << options.target_path
+        std::cerr << "note: " << printable(options.target_path)
                   << ": shows only part of the template (its boundary is long for its area): "
                      "matched by the one-sided distance, at the template's scale, without the "
                      "intrinsic stages; --target-extent complete matches it as a whole\n";
     }
     if (summary["doubtful"].get<bool>()) {
-        std::cerr << "warning: " << options.target_path
+        std::cerr << "warning: " << printable(options.target_path)
                   << ": the match disagrees with the target's intrinsic shape (" << std::fixed
                   << std::setprecision(2) << summary["intrinsic_disagreement"].get<double>()
                   << ", above " << kDoubtfulDisagreement

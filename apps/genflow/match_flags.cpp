@@ -2,6 +2,7 @@
 #include "match_flags.h"
 
 #include "cli_support.h"
+#include "number_checks.h"
 
 namespace genflow::cli {
 
@@ -33,17 +34,17 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
     command
         .add_option("--levels", flags.match.levels,
                     "Resolution levels (0: automatic, coarsest about 1000 vertices)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(non_negative_number())
         ->capture_default_str();
     command
         .add_option("--iterations", flags.match.max_iterations,
                     "Maximum flow steps on the coarsest level")
-        ->check(CLI::NonNegativeNumber)
+        ->check(non_negative_number())
         ->capture_default_str();
     command
         .add_option("--fine-iterations", flags.match.fine_iterations,
                     "Maximum flow steps on each finer level")
-        ->check(CLI::NonNegativeNumber)
+        ->check(non_negative_number())
         ->capture_default_str();
     command
         .add_option(
@@ -51,76 +52,76 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
             "A flow stops when its energy fell by less than this fraction over 20 steps "
             "(3e-3: 15-30 % faster at about the same mean error, but near-tied choices between "
             "starts then go either way)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(non_negative_number())
         ->capture_default_str();
     command.add_option("--alpha", flags.match.alpha, "Exponent of the pseudo-Hausdorff distance")
-        ->check(CLI::Range(0.5, 1000.0))
+        ->check(number_in(0.5, 1000.0))
         ->capture_default_str();
     command
         .add_option("--coarse-epsilon", flags.match.coarse_epsilon,
                     "Flow the first half of the coarsest level with an ε this many times "
                     "larger (a smoother distance; 1 = off)")
-        ->check(CLI::Range(1.0, 100.0))
+        ->check(number_in(1.0, 100.0))
         ->capture_default_str();
     command
         .add_option("--rigidity-length", flags.match.isometric.rigidity_length,
                     "Isometric prior: patches smaller than this fraction of the diagonal keep "
                     "their edge lengths")
-        ->check(CLI::Range(0.0, 10.0))
+        ->check(number_in(0.0, 10.0))
         ->capture_default_str();
     command
         .add_option("--fake-edges", flags.match.isometric.fake_edges,
                     "Isometric prior: edges added across the limbs for rigidity")
-        ->check(CLI::Range(0, 100000))
+        ->check(number_in(0, 100000))
         ->capture_default_str();
     command
         .add_option("--candidates", flags.match.starts.candidates,
                     "Rigid starts flowed on the coarsest level; of those within 5 % of the "
                     "lowest d_H, the one whose heat kernel signatures agree best goes on")
-        ->check(CLI::Range(1, 24))
+        ->check(number_in(1, 24))
         ->capture_default_str();
     command
         .add_option("--signature-guidance", flags.match.guided.signature_guidance,
                     "Weight of the heat kernel signatures in the coarsest flow, as a fraction "
                     "of the diagonal (points are near only if close and alike; 0 = off)")
-        ->check(CLI::Range(0.0, 1.0))
+        ->check(number_in(0.0, 1.0))
         ->capture_default_str();
     command
         .add_option("--eigenfunction-guidance", flags.match.guided.eigenfunction_guidance,
                     "Weight of the Laplacian eigenfunctions, carried over by a functional map, "
                     "in a second guided coarsest flow that tells left from right (0 = off)")
-        ->check(CLI::Range(0.0, 1.0))
+        ->check(number_in(0.0, 1.0))
         ->capture_default_str();
     command
         .add_option("--guidance-candidates", flags.match.guided.guidance_candidates,
                     "Run that second guided flow at the eigenfunction guidance times 1, 2, 4, "
                     "... and keep the result that agrees best with the target intrinsically")
-        ->check(CLI::Range(1, 8))
+        ->check(number_in(1, 8))
         ->capture_default_str();
     command
         .add_option("--stretch-weight", flags.match.guided.stretch_weight,
                     "Weight of the template's edge stretching (relative to its rest lengths, "
                     "times the diagonal) added to d_H in the last guided coarsest flow; it "
                     "keeps the template from sliding along the target (0 = off)")
-        ->check(CLI::Range(0.0, 100.0))
+        ->check(number_in(0.0, 100.0))
         ->capture_default_str();
     command
         .add_option("--stiffness-candidates", flags.match.guided.stiffness_candidates,
                     "Run that last flow at the stretch weight times 1, 4, 16, ... and keep the "
                     "result that agrees best with the target intrinsically (1 = the weight only)")
-        ->check(CLI::Range(1, 8))
+        ->check(number_in(1, 8))
         ->capture_default_str();
     command
         .add_option("--refinement-guidances", flags.match.refinement.guidances,
                     "Refine the second coarsest level with flows guided by the eigenfunctions "
                     "at the eigenfunction guidance times 1, 1/2, ... (this many) and keep, of "
                     "those and the plain flow, the result that agrees best (0 = off)")
-        ->check(CLI::Range(0, 8))
+        ->check(number_in(0, 8))
         ->capture_default_str();
     command
         .add_option("--refinement-iterations", flags.match.refinement_iterations,
                     "Steps of each guided refining flow")
-        ->check(CLI::Range(0, 100000))
+        ->check(number_in(0, 100000))
         ->capture_default_str();
     add_second_opinion_option(command, flags.match.second_opinion.above);
     command
@@ -129,7 +130,7 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
                     "opinion gave, is matched again from the intrinsic starts of up to this "
                     "many further landmark sets, side by side; the one that disagrees least is "
                     "kept (0: none)")
-        ->check(CLI::Range(0, 7))
+        ->check(number_in(0, 7))
         ->capture_default_str();
     command
         .add_option("--alternative-starts-above",
@@ -157,7 +158,7 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
         .add_option("--landmark-weight", flags.match.landmarks.weight,
                     "Weight of the landmarks beside the distance (1: landmarks a diagonal off "
                     "weigh as surfaces a diagonal apart)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(non_negative_number())
         ->capture_default_str();
     command.add_flag("--no-landmark-spread", flags.no_landmark_spread,
                      "Onto a partial target, do not spread the landmarks into a dense map of it by "
@@ -170,7 +171,7 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
         .add_option("--counterpart-reach", flags.match.counterparts.reach,
                     "How far, over the target's square root of area, a counterpart may be from "
                     "where the match put the vertex")
-        ->check(CLI::Range(1e-6, 10.0))
+        ->check(number_in(1e-6, 10.0))
         ->capture_default_str();
     command.add_flag("--no-turn-back", flags.no_turn_back,
                      "Do not turn back the parts that a fine functional map (60 eigenfunctions) "
@@ -182,7 +183,7 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
                     "each kept only if the heat kernel signatures then agree better with the "
                     "target, or the turning functions of pairs of extremities clearly better, "
                     "and not if the map was mirrored (0: none)")
-        ->check(CLI::Range(0, 100))
+        ->check(number_in(0, 100))
         ->capture_default_str();
     CLI::Option* implicit =
         command.add_flag("--implicit", flags.match.implicit,
@@ -191,7 +192,7 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
         .add_option("--quasi-newton", flags.match.quasi_newton_memory,
                     "Quasi-Newton flow steps: L-BFGS in the prior's metric with this many past "
                     "steps (0: steepest descent)")
-        ->check(CLI::Range(0, 100))
+        ->check(number_in(0, 100))
         ->excludes(implicit)
         ->capture_default_str();
     command

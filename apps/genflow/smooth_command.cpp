@@ -15,6 +15,7 @@
 #include "genflow/operators/volume.h"
 #include "genflow/smoothing/smoothing.h"
 #include "mesh_summary.h"
+#include "number_checks.h"
 #include "progress_bar.h"
 
 namespace genflow::cli {
@@ -137,23 +138,23 @@ void register_smooth_command(CLI::App& app) {
     command
         ->add_option("--dt", options->smoothing.time_step,
                      "Time step in units of h² (h = mean edge length)")
-        ->check(CLI::PositiveNumber)
+        ->check(positive_number())
         ->capture_default_str();
     command->add_option("--steps", options->smoothing.steps, "Number of steps")
-        ->check(CLI::NonNegativeNumber)
+        ->check(non_negative_number())
         ->capture_default_str();
     command
         ->add_option("--lambda", options->lambda,
                      "fairing/fairing2: the Sobolev metric's λ in units of h² (default: = dt)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number());
     command->add_option("--mu", options->smoothing.mu, "fairing2: weight of Δ² in units of h⁴")
-        ->check(CLI::NonNegativeNumber)
+        ->check(non_negative_number())
         ->capture_default_str();
     command
         ->add_option(
             "--volume-lambda", options->smoothing.volume_lambda,
             "volume-fairing: volume penalty in (0, 1]; volume loss ≈ this × that of fairing")
-        ->check(CLI::Range(1e-12, 1.0))
+        ->check(number_in(1e-12, 1.0))
         ->capture_default_str();
     command->add_flag("--fix-boundary", options->smoothing.fix_boundary,
                       "Keep boundary vertices where they are");
@@ -161,7 +162,7 @@ void register_smooth_command(CLI::App& app) {
     command->add_option("--frames", options->frames,
                         "Write the input and every k-th step to DIR/frame_NNNNN.ply (float PLY)");
     command->add_option("--frame-every", options->frame_every, "k for --frames")
-        ->check(CLI::PositiveNumber)
+        ->check(positive_number())
         ->capture_default_str();
     command->callback([options] { run_smooth(*options); });
 }

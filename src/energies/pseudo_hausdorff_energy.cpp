@@ -546,8 +546,9 @@ void check_options(const PseudoHausdorffOptions& options, const char* caller) {
         throw InvalidInput(std::string(caller) + ": alpha must be finite and >= 0.5, got " +
                            std::to_string(options.alpha));
     }
-    if (!detail::finite_above(options.epsilon, 0)) {
-        throw InvalidInput(std::string(caller) + ": epsilon must be positive and finite, got " +
+    // ε is a length and is squared as coordinates are: the same bound keeps ε² far from overflow.
+    if (!detail::finite_above(options.epsilon, 0) || options.epsilon > kLargestCoordinate) {
+        throw InvalidInput(std::string(caller) + ": epsilon must lie in (0, 1e50], got " +
                            std::to_string(options.epsilon));
     }
     if (!(options.moving_coverage >= 0 && options.moving_coverage <= 1)) {

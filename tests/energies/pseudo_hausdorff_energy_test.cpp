@@ -303,6 +303,8 @@ TEST(PseudoHausdorff, AnImplicitL2FlowDecreasesIt) {
 TEST(PseudoHausdorff, RejectsBadInput) {
     const TriangleMesh mesh = make_icosphere(1);
     EXPECT_THROW(PseudoHausdorffEnergy(mesh, {.alpha = 8, .epsilon = 0}), InvalidInput);
+    // ε is squared as a coordinate is: beyond the largest coordinate ε² would overflow.
+    EXPECT_THROW(PseudoHausdorffEnergy(mesh, {.alpha = 8, .epsilon = 1e300}), InvalidInput);
     EXPECT_THROW(PseudoHausdorffEnergy(mesh, {.alpha = 0.1, .epsilon = 1}), InvalidInput);
     EXPECT_THROW(PseudoHausdorffEnergy(mesh, {.alpha = 8, .epsilon = 1, .truncation = 0.7}),
                  InvalidInput);
