@@ -70,6 +70,7 @@ void write_part_files(const std::filesystem::path& directory, const PartModel& p
 void run_demo(const DemoOptions& options) {
     const std::filesystem::path directory(options.output_dir);
     create_output_directory(directory);
+    OutputTransaction outputs;  // every file of the demo, or none
 
     // The template at rest; the target: the same shape sampled elsewhere, bent at both joints
     // and moved rigidly. The ground truth is the template under the same pose.
@@ -101,6 +102,7 @@ void run_demo(const DemoOptions& options) {
     job.options.parts = parts;
     job.progress_bar = !options.quiet;
     const nlohmann::json summary = run_match_job(std::move(job));
+    outputs.commit();
 
     const auto& error = summary["correspondence_error_over_diagonal"];
     std::printf(

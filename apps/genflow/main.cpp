@@ -9,6 +9,7 @@
 #include "cli_support.h"
 #include "commands.h"
 #include "genflow/exceptions.h"
+#include "genflow/io/atomic_file.h"
 
 namespace {
 
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
         "genflow: generalized gradient flows of triangle meshes (Eckstein et al., SGP 2007)",
         "genflow"};
     app.set_version_flag("--version", "genflow 0.1.0");
+    genflow::remove_temporaries_on_signals();
     app.require_subcommand(1);
     register_info_command(app);
     register_smooth_command(app);
@@ -55,6 +57,9 @@ int main(int argc, char** argv) {
         }
         std::cerr << "genflow: " << parse_error_message(app, e, argc, argv) << '\n';
         return kBadInput;
+    } catch (const genflow::OutputError& e) {
+        std::cerr << "genflow: " << printable(e.what()) << '\n';
+        return kFailure;
     } catch (const genflow::IoError& e) {
         std::cerr << "genflow: " << printable(e.what()) << '\n';
         return kBadInput;

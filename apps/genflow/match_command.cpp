@@ -10,6 +10,7 @@
 #include "cli_support.h"
 #include "commands.h"
 #include "genflow/exceptions.h"
+#include "genflow/io/atomic_file.h"
 #include "genflow/io/mesh_format.h"
 #include "genflow/io/read_landmarks.h"
 #include "genflow/io/read_part_model.h"
@@ -71,6 +72,12 @@ void print_point_cloud(const LoadedMesh& target) {
 
 void run_match(const MatchCommandOptions& options) {
     require_writable_format(options.output);
+    // Every output checked before any work, so that a typo costs nothing.
+    for (const std::string& output : {options.output, options.correspondence, options.summary}) {
+        if (!output.empty()) {
+            check_output_path(output);
+        }
+    }
     const LoadedMesh template_mesh = load_mesh(options.template_path);
     const LoadedMesh target = load_target(options.target_path);
     if (!options.json) {

@@ -95,6 +95,8 @@ nlohmann::json run_match_job(MatchJob job) {
         summary["stranded_vertex_indices"] = stranded;
     }
 
+    // All or none: a failure at the last file leaves the earlier ones as they were.
+    OutputTransaction outputs;
     write_mesh(job.output, result.deformed);
     if (job.correspondence) {
         write_correspondences(*job.correspondence, match_correspondence(result, job.target));
@@ -103,6 +105,7 @@ nlohmann::json run_match_job(MatchJob job) {
     if (job.summary) {
         write_file_atomically(*job.summary, summary.dump(2) + "\n");
     }
+    outputs.commit();
     return summary;
 }
 

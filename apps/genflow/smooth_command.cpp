@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "genflow/exceptions.h"
+#include "genflow/io/atomic_file.h"
 #include "genflow/io/mesh_format.h"
 #include "genflow/io/write_mesh.h"
 #include "genflow/operators/area.h"
@@ -51,6 +52,7 @@ void run_smooth(SmoothCommandOptions options) {
     if (!format || *format == MeshFormat::Stl) {
         throw IoError(options.output + ": cannot write this format (expected .obj, .ply or .off)");
     }
+    check_output_path(options.output);
     const LoadedMesh loaded = load_mesh(options.input);
     if (!options.json) {
         print_warnings(loaded);

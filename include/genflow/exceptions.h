@@ -28,4 +28,11 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// Writing an output failed: its directory is missing or not writable, it is a directory, the
+/// disk is full. A failure of the run, not of its input (the tool's exit code 1, not 2).
+class OutputError : public IoError {
+public:
+    using IoError::IoError;
+};
+
 }  // namespace genflow

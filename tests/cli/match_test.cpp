@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 
 #include "cli/cli_runner.h"
 #include "genflow/evaluation/single_view.h"
+#include "genflow/io/read_file.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/write_mesh.h"
 #include "genflow/matching/rigid_alignment.h"
@@ -77,6 +79,35 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
 
 // The counterparts' stage runs by default (and says how many vertices it moved from the closest
 // point), --no-counterparts turns it off, and --counterpart-reach must be positive.
+// Every output is checked before the match: one that cannot be written fails the run (exit 1)
+// and leaves the others as they were, an existing output untouched.
+TEST(MatchCli, AnUnwritableOutputFailsTheRunBeforeAnyWorkAndChangesNothing) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "template.ply", make_limb(2));
+    write_mesh(directory / "target.ply", make_limb(2, 5));
+    test::write_bytes(directory / "p.ply", "old");
+    const std::string command = "match " + quoted(directory / "template.ply") + " " +
+                                quoted(directory / "target.ply") + " -o " +
+                                quoted(directory / "p.ply");
+    for (const auto& [flags, says] :
+         {std::pair{" --summary " + quoted(directory / "nodir" / "s.json"),
+                    "s.json: cannot be written: the directory"},
+          {" --correspondence " + quoted(directory.path()), ": is a directory"}}) {
+        const auto result = run_genflow(command + flags);
+        EXPECT_EQ(result.exit_code, 1) << result.err;
+        EXPECT_NE(result.err.find(says), std::string::npos) << result.err;
+        EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    }
+    const auto missing = run_genflow("match " + quoted(directory / "template.ply") + " " +
+                                     quoted(directory / "target.ply") + " -o " +
+                                     quoted(directory / "nodir" / "x.ply"));
+    EXPECT_EQ(missing.exit_code, 1) << missing.err;
+    EXPECT_EQ(read_file(directory / "p.ply"), "old");
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(directory.path()),
+                            std::filesystem::directory_iterator()),
+              3);
+}
+
 TEST(MatchCli, CounterpartsHaveTheirSwitchAndReach) {
     const test::TemporaryDirectory directory;
     write_mesh(directory / "template.ply", make_limb(3));

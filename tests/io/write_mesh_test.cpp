@@ -3,10 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-
 #include "genflow/exceptions.h"
-#include "genflow/io/atomic_file.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/mesh/primitives.h"
 #include "support/test_meshes.h"
@@ -77,16 +74,6 @@ TEST(WriteMesh, RejectsUnknownOrStlExtensions) {
     EXPECT_THROW(write_mesh(directory / "out.xyz", make_icosphere(0)), IoError);
     EXPECT_THROW(write_mesh(directory / "out.stl", make_icosphere(0)), IoError);
     EXPECT_TRUE(std::filesystem::is_empty(directory.path()));
-}
-
-TEST(AtomicFile, ReplacesContentsWhole) {
-    const test::TemporaryDirectory directory;
-    write_file_atomically(directory / "a.txt", "first");
-    write_file_atomically(directory / "a.txt", "second");
-    std::ifstream file(directory / "a.txt");
-    std::string content;
-    file >> content;
-    EXPECT_EQ(content, "second");
 }
 
 }  // namespace
