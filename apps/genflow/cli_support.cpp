@@ -108,7 +108,8 @@ void create_output_directory(const std::filesystem::path& directory) {
     std::error_code error;
     std::filesystem::create_directories(directory, error);
     if (error) {
-        throw IoError(directory.string() + ": cannot create directory (" + error.message() + ")");
+        throw OutputError(directory.string() + ": cannot create directory (" + error.message() +
+                          ")");
     }
 }
 

@@ -53,8 +53,8 @@ void print_warnings(const LoadedMesh& loaded);
 /// "frame_00042.ply": the name of animation frame `step` in a --frames directory.
 std::string frame_name(int step);
 
-/// Creates `directory` (and its parents) for --frames, --output-dir and the like; throws IoError
-/// naming it on failure.
+/// Creates `directory` (and its parents) for --frames, --output-dir and the like; throws
+/// OutputError naming it on failure.
 void create_output_directory(const std::filesystem::path& directory);
 
 /// `--second-opinion-above X` (MatchOptions::second_opinion), shared by match and eval.

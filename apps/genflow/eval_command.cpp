@@ -62,6 +62,19 @@ std::string field(const std::filesystem::path& file, const nlohmann::json& pair,
     return pair[key].get<std::string>();
 }
 
+// A pair's name, which names its files in --output-dir: a plain file name, so that no pairs
+// file can write outside that directory (no "..", no separator, not absolute, not hidden).
+std::string output_name(const std::filesystem::path& file, const std::string& name) {
+    if (name.empty() || name.front() == '.' || name.find('/') != std::string::npos ||
+        name.find('\0') != std::string::npos) {
+        throw IoError(file.string() +
+                      ": a pair's name must be a plain file name (no '/', not "
+                      "starting with '.'), got \"" +
+                      name + "\"");
+    }
+    return name;
+}
+
 // The pair's target: its "target_remeshed" file, or else the ground truth simplified to the
 // share "target_simplified" of its vertices (quadric collapses onto kept vertices: another
 // sampling and connectivity than the template's, on the same surface), so that any two poses
@@ -112,7 +125,7 @@ void run_eval(const EvalOptions& options) {
             "|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
     }
     for (const auto& pair : pairs) {
-        const std::string name = field(file, pair, "name");
+        const std::string name = output_name(file, field(file, pair, "name"));
         if (!options.only.empty() &&
             std::find(options.only.begin(), options.only.end(), name) == options.only.end()) {
             continue;

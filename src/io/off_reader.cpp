@@ -116,6 +116,11 @@ TriangleMesh parse_off(std::string_view bytes, const ParseContext& context) {
         }
         builder.add_polygon(corners);
     }
+    // More lines than the counts declare: a wrong count would silently drop faces.
+    if (lines.next(tokens)) {
+        context.fail(at_line() + "more data than the header's " + std::to_string(num_vertices) +
+                     " vertices and " + std::to_string(num_faces) + " faces");
+    }
     return builder.finish();
 }
 

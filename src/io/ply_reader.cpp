@@ -169,6 +169,15 @@ public:
         return encoding_ == Encoding::Ascii ? text_.bytes_left() : data_.size() - pos_;
     }
 
+    /// Whether anything but whitespace is left after the values read.
+    [[nodiscard]] bool content_left() {
+        if (encoding_ == Encoding::Ascii) {
+            return !text_.next_token().empty();
+        }
+        const std::string_view rest = data_.substr(pos_);
+        return rest.find_first_not_of(" \t\r\n") != std::string_view::npos;
+    }
+
     /// Reads one value of `type`; `element` names what is being read in error messages.
     double read(ScalarType type, const std::string& element) {
         if (encoding_ == Encoding::Ascii) {
@@ -363,6 +372,10 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
     }
     if (!has_vertices) {
         context.fail("no 'vertex' element");
+    }
+    // Data beyond the declared elements: a wrong count would silently drop what follows.
+    if (reader.content_left()) {
+        context.fail("more data than the header declares");
     }
     if (vertex_normals != nullptr) {
         vertex_normals->resize(static_cast<Eigen::Index>(normals.size()), 3);

@@ -146,10 +146,28 @@ TEST(EvalCli, RefusesAnOutputDirectoryItCannotCreateBeforeMatching) {
     const auto blocked = directory.path() / "template.ply" / "results";  // under a file
     const auto result =
         run_genflow("eval " + quoted(file) + " --priors rigid --output-dir " + quoted(blocked));
-    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.exit_code, 1);  // an output that cannot be written
     EXPECT_NE(result.err.find(blocked.string() + ": cannot create directory"), std::string::npos)
         << result.err;
     EXPECT_EQ(result.out.find("| limb |"), std::string::npos) << result.out;
+}
+
+// A pair's name names its files in the output directory: one that would lead out of it is
+// refused before anything is matched or written.
+TEST(EvalCli, RefusesAPairNameThatLeavesTheOutputDirectory) {
+    for (const std::string name : {"../x", "/tmp/x", "a/b", ".hidden", ""}) {
+        const test::TemporaryDirectory directory;
+        const auto file =
+            write_pair(directory.path(), {{"target_remeshed", "resampled.obj"}, {"name", name}});
+        const auto out = directory.path() / "out";
+        const auto result =
+            run_genflow("eval " + quoted(file) + " --priors rigid --output-dir " + quoted(out));
+        EXPECT_EQ(result.exit_code, 2) << name;
+        EXPECT_NE(result.err.find("a pair's name must be a plain file name"), std::string::npos)
+            << result.err;
+        EXPECT_FALSE(std::filesystem::exists(directory.path() / "x.target.ply")) << name;
+        EXPECT_TRUE(!std::filesystem::exists(out) || std::filesystem::is_empty(out)) << name;
+    }
 }
 
 TEST(EvalCli, RefusesAPairWithoutATargetOrWithABadShare) {

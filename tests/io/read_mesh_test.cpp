@@ -231,6 +231,16 @@ INSTANTIATE_TEST_SUITE_P(
                   "malformed face"},
         Malformed{"OffTextInNumbers", MeshFormat::Off, "OFF\n1 0 0\n0 zero 0\n",
                   "malformed vertex"},
+        // More faces than declared: the extra ones were dropped silently.
+        Malformed{"OffMoreThanDeclared", MeshFormat::Off,
+                  "OFF\n3 1 0\n0 0 0\n1 0 0\n1 1 0\n3 0 1 2\n3 0 2 1\n",
+                  "line 7: more data than the header's 3 vertices and 1 faces"},
+        Malformed{"PlyDataAfterTheElements", MeshFormat::Ply,
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                  "property float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n5 5 5\n",
+                  "more data than the header declares"},
+        Malformed{"PlyBinaryBytesAfterTheElements", MeshFormat::Ply, binary_ply(false) + "xyz",
+                  "more data than the header declares"},
         Malformed{"ObjBadVertex", MeshFormat::Obj, "v 0 0\n", "line 1: malformed vertex"},
         Malformed{"ObjTextInVertex", MeshFormat::Obj, "v 0 0 0\nv 1 x 0\n",
                   "line 2: malformed vertex"},
