@@ -46,6 +46,13 @@ struct SmoothCommandOptions {
     int frame_every = 1;
 };
 
+// "+1.234%".
+std::string signed_percent(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%+.3f%%", value);
+    return text;
+}
+
 void run_smooth(SmoothCommandOptions options) {
     // Refuse an unwritable format before spending time on the flow.
     const auto format = mesh_format_from_extension(options.output);
@@ -87,8 +94,11 @@ void run_smooth(SmoothCommandOptions options) {
     const double area_after = surface_area(result.mesh);
     const double volume_before = enclosed_volume(loaded.mesh);
     const double volume_after = enclosed_volume(result.mesh);
+    // Only a closed surface encloses a volume to compare (an open one's may be zero).
+    const bool closed = loaded.report.closed() && volume_before != 0;
     const double volume_change =
-        100 * (std::abs(volume_after) - std::abs(volume_before)) / std::abs(volume_before);
+        closed ? 100 * (std::abs(volume_after) - std::abs(volume_before)) / std::abs(volume_before)
+               : 0;
     if (options.json) {
         const nlohmann::json summary = {
             {"input", options.input},
@@ -101,19 +111,32 @@ void run_smooth(SmoothCommandOptions options) {
             {"area_after", area_after},
             {"volume_before", volume_before},
             {"volume_after", volume_after},
-            {"volume_change_percent", volume_change},
+            {"volume_change_percent",
+             closed ? nlohmann::json(volume_change) : nlohmann::json(nullptr)},
             {"closed", loaded.report.closed()},
+            {"energy_rose", result.energy_rose()},
             {"energy", result.energy},
         };
         std::cout << summary.dump(2) << '\n';
         return;
     }
+    if (result.energy_rose()) {
+        std::cerr << "warning: " << printable(options.input) << ": the flow's energy rose ("
+                  << result.energy.front() << " -> " << result.energy.back()
+                  << "): the time step is too large for this metric; try a smaller --dt"
+                  << (options.method == "fairing" || options.method == "fairing2"
+                          ? " or a larger --lambda"
+                          : "")
+                  << '\n';
+    }
+    const std::string volume_change_text =
+        closed ? " (" + signed_percent(volume_change) + ")" : " (open surface)";
     std::printf(
-        "smooth: %s, %d steps (%s) in %.2f s; area %.6g -> %.6g; volume %.6g -> %.6g "
-        "(%+.3f%%%s); wrote %s\n",
+        "smooth: %s, %d steps (%s) in %.2f s; area %.6g -> %.6g; volume %.6g -> %.6g%s; "
+        "wrote %s\n",
         options.method.c_str(), result.steps, to_string(result.status), result.seconds, area_before,
-        area_after, volume_before, volume_after, volume_change,
-        loaded.report.closed() ? "" : ", open surface", options.output.c_str());
+        area_after, volume_before, volume_after, volume_change_text.c_str(),
+        printable(options.output).c_str());
 }
 
 }  // namespace

@@ -30,8 +30,25 @@ TEST(SmoothCli, EveryMethodWritesASmootherMeshAndAJsonSummary) {
         EXPECT_EQ(json["status"], "max-steps");
         EXPECT_EQ(json["energy"].size(), 4u);
         EXPECT_LT(json["area_after"].get<double>(), json["area_before"].get<double>());
+        EXPECT_FALSE(json["energy_rose"].get<bool>());
         EXPECT_EQ(read_mesh(out).F.rows(), 1280);
     }
+}
+
+// A flow whose time step is too large for its metric (fairing with a tiny λ is nearly explicit)
+// makes the area grow: it says so, in a warning and in the JSON, instead of reporting success.
+TEST(SmoothCli, SaysSoWhenTheEnergyRose) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "noisy.ply", test::noisy_icosphere(3, 0.2));
+    const std::string command = "smooth " + quoted(directory / "noisy.ply") + " " +
+                                quoted(directory / "out.ply") +
+                                " --method fairing --lambda 0.001 --dt 3";
+    const auto text = run_genflow(command);
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.err.find("the flow's energy rose"), std::string::npos) << text.err;
+    const auto json = nlohmann::json::parse(run_genflow(command + " --json").out);
+    EXPECT_TRUE(json["energy_rose"].get<bool>());
+    EXPECT_GT(json["area_after"].get<double>(), json["area_before"].get<double>());
 }
 
 TEST(SmoothCli, VolumeFairingKeepsTheVolumeThatFairingLoses) {

@@ -56,6 +56,12 @@ struct FlowResult {
     double seconds = 0;          ///< wall time
     std::string message;         ///< why it stopped, for NonFinite and SolverFailed
 
+    /// Whether the energy ended above where it started: a descent that diverged (a time step too
+    /// large for the metric), whatever the status says.
+    [[nodiscard]] bool energy_rose() const {
+        return energy.size() > 1 && energy.back() > energy.front();
+    }
+
     /// True unless the flow broke down (NonFinite or SolverFailed).
     [[nodiscard]] bool ok() const {
         return status != FlowStatus::NonFinite && status != FlowStatus::SolverFailed;
