@@ -48,8 +48,9 @@ int thread_id() {
 #endif
 }
 
-// log Σ exp(v) over the finite entries; −inf if there is none. The threads sum fixed blocks,
-// added in thread order: the result does not depend on the scheduling.
+// log Σ exp(v) over the finite entries; −inf if there is none. The threads compute the terms,
+// and one sums them in order: the same bits for any thread count (per-thread partial sums
+// depended on how many threads shared the loop).
 double log_sum_exp(const std::vector<double>& values) {
     double largest = kMinusInfinity;
     for (const double v : values) {
@@ -58,20 +59,16 @@ double log_sum_exp(const std::vector<double>& values) {
     if (largest == kMinusInfinity) {
         return kMinusInfinity;
     }
-    std::vector<double> partial(static_cast<std::size_t>(thread_count()), 0.0);
     const auto count = static_cast<std::ptrdiff_t>(values.size());
-#pragma omp parallel if (count > kParallelLoopThreshold)
-    {
-        double sum = 0;
-#pragma omp for schedule(static)
-        for (std::ptrdiff_t k = 0; k < count; ++k) {
-            sum += std::exp(values[static_cast<std::size_t>(k)] - largest);
-        }
-        partial[static_cast<std::size_t>(thread_id())] = sum;
+    std::vector<double> terms(values.size());
+#pragma omp parallel for schedule(static) if (count > kParallelLoopThreshold)
+    for (std::ptrdiff_t k = 0; k < count; ++k) {
+        terms[static_cast<std::size_t>(k)] =
+            std::exp(values[static_cast<std::size_t>(k)] - largest);
     }
     double sum = 0;
-    for (const double part : partial) {
-        sum += part;
+    for (const double term : terms) {
+        sum += term;
     }
     return largest + std::log(sum);
 }

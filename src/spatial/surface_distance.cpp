@@ -132,58 +132,81 @@ void one_sided_hausdorff(const TriangleMesh& from, const Target& target, double 
     result.hausdorff_upper_bound = std::max(result.hausdorff + tolerance, unresolved);
 }
 
-void one_sided_mean(const TriangleMesh& from, const TriangleBvh& to, double length,
-                    OneSidedDistance& result) {
+// A face's share of the mean and RMS integrals and of their bounds: Σ over its pieces of area·d,
+// area·d², area·r, area·r² (d the distance of a piece's centroid, r its radius), and its area.
+struct FaceIntegrals {
     double integral = 0;
     double integral2 = 0;
-    double area = 0;
     double mean_bound = 0;
     double rms_bound2 = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(+ : integral, integral2, area, mean_bound, rms_bound2)
-    for (Eigen::Index f = 0; f < from.F.rows(); ++f) {
-        const detail::Triangle t(from, f);
-        const double longest = std::max(
-            {(t.x[1] - t.x[0]).norm(), (t.x[2] - t.x[1]).norm(), (t.x[0] - t.x[2]).norm()});
-        const int splits = std::clamp(static_cast<int>(std::ceil(longest / length)), 1, 256);
-        const double piece_area = t.area() / (static_cast<double>(splits) * splits);
-        // Split into splits² similar triangles (upward and downward) and use their centroids.
-        for (int i = 0; i < splits; ++i) {
-            for (int j = 0; i + j < splits; ++j) {
-                for (int flip = 0; flip < 2 && (flip == 0 || i + j + 1 < splits); ++flip) {
-                    Eigen::Vector3d corner[3];
-                    const double s = splits;
-                    const auto at = [&](double u, double v) {
-                        return t.x[0] + (u / s) * (t.x[1] - t.x[0]) + (v / s) * (t.x[2] - t.x[0]);
-                    };
-                    if (flip == 0) {
-                        corner[0] = at(i, j);
-                        corner[1] = at(i + 1, j);
-                        corner[2] = at(i, j + 1);
-                    } else {
-                        corner[0] = at(i + 1, j);
-                        corner[1] = at(i + 1, j + 1);
-                        corner[2] = at(i, j + 1);
-                    }
-                    const Eigen::Vector3d centroid = (corner[0] + corner[1] + corner[2]) / 3;
-                    const double radius =
-                        std::max({(corner[0] - centroid).norm(), (corner[1] - centroid).norm(),
-                                  (corner[2] - centroid).norm()});
-                    const double d = to.distance(centroid);
-                    integral += piece_area * d;
-                    integral2 += piece_area * d * d;
-                    mean_bound += piece_area * radius;
-                    rms_bound2 += piece_area * radius * radius;
+    double area = 0;
+};
+
+FaceIntegrals face_integrals(const TriangleMesh& from, Eigen::Index f, const TriangleBvh& to,
+                             double length) {
+    FaceIntegrals sums;
+    const detail::Triangle t(from, f);
+    const double longest =
+        std::max({(t.x[1] - t.x[0]).norm(), (t.x[2] - t.x[1]).norm(), (t.x[0] - t.x[2]).norm()});
+    const int splits = std::clamp(static_cast<int>(std::ceil(longest / length)), 1, 256);
+    const double piece_area = t.area() / (static_cast<double>(splits) * splits);
+    // Split into splits² similar triangles (upward and downward) and use their centroids.
+    for (int i = 0; i < splits; ++i) {
+        for (int j = 0; i + j < splits; ++j) {
+            for (int flip = 0; flip < 2 && (flip == 0 || i + j + 1 < splits); ++flip) {
+                Eigen::Vector3d corner[3];
+                const double s = splits;
+                const auto at = [&](double u, double v) {
+                    return t.x[0] + (u / s) * (t.x[1] - t.x[0]) + (v / s) * (t.x[2] - t.x[0]);
+                };
+                if (flip == 0) {
+                    corner[0] = at(i, j);
+                    corner[1] = at(i + 1, j);
+                    corner[2] = at(i, j + 1);
+                } else {
+                    corner[0] = at(i + 1, j);
+                    corner[1] = at(i + 1, j + 1);
+                    corner[2] = at(i, j + 1);
                 }
+                const Eigen::Vector3d centroid = (corner[0] + corner[1] + corner[2]) / 3;
+                const double radius =
+                    std::max({(corner[0] - centroid).norm(), (corner[1] - centroid).norm(),
+                              (corner[2] - centroid).norm()});
+                const double d = to.distance(centroid);
+                sums.integral += piece_area * d;
+                sums.integral2 += piece_area * d * d;
+                sums.mean_bound += piece_area * radius;
+                sums.rms_bound2 += piece_area * radius * radius;
             }
         }
-        area += t.area();
     }
-    result.area = area;
-    if (area > 0) {
-        result.mean = integral / area;
-        result.rms = std::sqrt(integral2 / area);
-        result.mean_error_bound = mean_bound / area;
-        result.rms_error_bound = std::sqrt(rms_bound2 / area);
+    sums.area = t.area();
+    return sums;
+}
+
+// The faces' integrals are computed in parallel and added in face order: the same bits for any
+// thread count.
+void one_sided_mean(const TriangleMesh& from, const TriangleBvh& to, double length,
+                    OneSidedDistance& result) {
+    std::vector<FaceIntegrals> faces(static_cast<std::size_t>(from.F.rows()));
+#pragma omp parallel for schedule(dynamic, 64)
+    for (Eigen::Index f = 0; f < from.F.rows(); ++f) {
+        faces[static_cast<std::size_t>(f)] = face_integrals(from, f, to, length);
+    }
+    FaceIntegrals total;
+    for (const FaceIntegrals& face : faces) {
+        total.integral += face.integral;
+        total.integral2 += face.integral2;
+        total.mean_bound += face.mean_bound;
+        total.rms_bound2 += face.rms_bound2;
+        total.area += face.area;
+    }
+    result.area = total.area;
+    if (total.area > 0) {
+        result.mean = total.integral / total.area;
+        result.rms = std::sqrt(total.integral2 / total.area);
+        result.mean_error_bound = total.mean_bound / total.area;
+        result.rms_error_bound = std::sqrt(total.rms_bound2 / total.area);
     }
 }
 
