@@ -283,6 +283,10 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
     report(issues, Severity::Error, non_finite, "vertices with non-finite coordinates");
     report(issues, Severity::Error, huge, "vertices with a coordinate beyond ±1e50");
     report(issues, Severity::Error, out_of_range, "faces with vertex indices out of range");
+    // With no area at all there is no surface to measure, smooth or match.
+    if (!good_faces.empty() && zero_area.count == static_cast<Eigen::Index>(good_faces.size())) {
+        issues.push_back({Severity::Error, "every face has zero area"});
+    }
     report(issues, Severity::Warning, repeated, "faces with a repeated vertex index");
     report(issues, Severity::Warning, zero_area, "zero-area faces");
     report(issues, Severity::Warning, sliver, "sliver faces");

@@ -38,7 +38,13 @@ struct SpdSolver::Impl {
     }
 };
 
-SpdSolver::SpdSolver() : impl_(std::make_unique<Impl>()) {}
+SpdSolver::SpdSolver() : impl_(std::make_unique<Impl>()) {
+#ifdef GENFLOW_HAS_CHOLMOD
+    // A failure is reported as a SolverError; CHOLMOD printing its own warning as well would
+    // add a second line to the tool's one-line message.
+    impl_->solver.cholmod().print = 0;
+#endif
+}
 SpdSolver::~SpdSolver() = default;
 SpdSolver::SpdSolver(SpdSolver&&) noexcept = default;
 SpdSolver& SpdSolver::operator=(SpdSolver&&) noexcept = default;

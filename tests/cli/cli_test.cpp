@@ -173,6 +173,8 @@ TEST(Cli, BadFilesAreRefusedWithOneLineNamingTheFile) {
          "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
          "end_header\n0 0 0\n1e308 0 0\n0 1 0\n3 0 1 2\n",
          "a coordinate beyond ±1e50"},
+        {"flat.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n3 0 1 2\n3 1 2 3\n",
+         "every face has zero area"},
         {"text.stl", "not an stl at all", "not an STL file"},
         {"mesh.dat", "whatever", "unknown mesh format"},
     };

@@ -68,8 +68,21 @@ TEST(Validate, CoordinatesBeyondTheLargestAreErrors) {
     EXPECT_FALSE(report.ok());
     EXPECT_EQ(report.huge_vertices, 2);
     EXPECT_EQ(report.first_error(), "2 vertices with a coordinate beyond ±1e50 (first: vertex 1)");
-    mesh.V(1, 2) = mesh.V(3, 0) = kLargestCoordinate;
-    EXPECT_TRUE(validate(mesh).ok());
+    EXPECT_TRUE(validate(TriangleMesh{kLargestCoordinate * two_triangles().V, mesh.F}).ok());
+}
+
+// A mesh whose every face has zero area has no surface to measure, smooth or match: an error
+// that names the file at once, where the algorithms failed later with a message of their own.
+TEST(Validate, AMeshWithoutAreaIsAnError) {
+    TriangleMesh flat = two_triangles();
+    flat.V.col(1).setZero();
+    const ValidationReport report = validate(flat);
+    EXPECT_FALSE(report.ok());
+    EXPECT_EQ(report.first_error(), "every face has zero area");
+    TriangleMesh one_flat = two_triangles();
+    one_flat.V(3, 0) = 1;  // face 1 flat, face 0 not
+    one_flat.V(3, 1) = 1;
+    EXPECT_TRUE(validate(one_flat).ok());
 }
 
 TEST(Validate, OutOfRangeIndicesAreErrors) {
