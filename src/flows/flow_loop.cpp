@@ -98,8 +98,9 @@ FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, Metric& metr
         // otherwise), so the energy alone tells a breakdown.
         if (!std::isfinite(step.value)) {
             result.status = FlowStatus::NonFinite;
-            result.message = std::string(caller) + ": step " + std::to_string(result.steps + 1) +
-                             " produced non-finite positions or energy (time step too large?)";
+            result.message =
+                std::string(caller) + ": step " + std::to_string(result.steps + 1) +
+                " produced non-finite or diverging positions or energy (time step too large?)";
             break;
         }
         result.mesh = std::move(*step.next);
@@ -130,7 +131,7 @@ StepPolicy fixed_step(const Energy& energy,
         ProposedStep step;
         step.next = current;
         step.next->V += displacement(current);
-        step.value = all_finite(step.next->V) ? energy.value(*step.next) : NAN;
+        step.value = within_coordinate_range(step.next->V) ? energy.value(*step.next) : NAN;
         return step;
     };
 }

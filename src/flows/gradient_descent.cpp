@@ -101,7 +101,9 @@ private:
         TriangleMesh trial = current;
         for (int halving = 0; halving <= kMaxHalvings; ++halving, tau /= 2) {
             trial.V = current.V - tau * direction;
-            const double trial_value = energy_.value(trial);
+            // Beyond the coordinates operators take the step has diverged: halve it.
+            const double trial_value =
+                detail::within_coordinate_range(trial.V) ? energy_.value(trial) : NAN;
             if (accepts(trial_value, value, tau * decrease)) {
                 return AcceptedStep{{.next = std::move(trial), .value = trial_value}, tau, halving};
             }
@@ -158,7 +160,9 @@ private:
                 continue;
             }
             trial.V = current.V - tau * direction;
-            const double trial_value = energy_.value(trial);
+            // Beyond the coordinates operators take the step has diverged: halve it.
+            const double trial_value =
+                detail::within_coordinate_range(trial.V) ? energy_.value(trial) : NAN;
             if (accepts(trial_value, value, tau * decrease)) {
                 remember(tau, halving);
                 return {.next = std::move(trial), .value = trial_value};

@@ -32,6 +32,15 @@ bool all_finite(const Eigen::PlainObjectBase<Derived>& V) {
     return std::all_of(V.data(), V.data() + V.size(), [](double x) { return std::isfinite(x); });
 }
 
+/// True if every coordinate is finite and within ±kLargestCoordinate: positions every operator
+/// takes. A flow's step outside them has diverged.
+template <typename Derived>
+bool within_coordinate_range(const Eigen::PlainObjectBase<Derived>& V) {
+    return std::all_of(V.data(), V.data() + V.size(), [](double x) {
+        return std::isfinite(x) && std::abs(x) <= kLargestCoordinate;
+    });
+}
+
 /// Throws InvalidInput naming `function` unless every index of F lies in [0, #V) and every
 /// coordinate of V is finite and within ±kLargestCoordinate. O(#V + #F): cheap enough for every
 /// public entry point.

@@ -86,9 +86,9 @@ TEST(Integrators, BlowUpEndsWithStatusAndTheLastFiniteMesh) {
     const test::FloatingPointTrapsOff overflow_on_purpose;
     const FlowResult result =
         explicit_euler(mesh, ExplodingEnergy{}, metric, {.time_step = 1.0, .max_steps = 200});
-    // Positions overflow (NonFinite) or the masses do first (SolverFailed): either way a status.
+    // Positions leave the range operators take (NonFinite) or the masses overflow first
+    // (SolverFailed): either way a status, and the last mesh within range is returned.
     EXPECT_FALSE(result.ok()) << to_string(result.status);
-    EXPECT_GE(result.steps, 1);
     EXPECT_LT(result.steps, 10);
     EXPECT_TRUE(result.mesh.V.allFinite());
     EXPECT_FALSE(result.message.empty());
