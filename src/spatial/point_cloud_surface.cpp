@@ -10,6 +10,7 @@
 #include <map>
 #include <numeric>
 #include <queue>
+#include <set>
 #include <string>
 #include <tuple>
 #include <unordered_map>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "genflow/exceptions.h"
+#include "genflow/mesh/boundary_loops.h"
 #include "operators/triangle.h"
 #include "spatial/point_index.h"
 
@@ -485,6 +487,91 @@ void orient_outward(std::vector<Face>& faces, const std::vector<int>& component,
     }
 }
 
+// Sorted corners of a face, to find a face however it is turned.
+Face sorted(Face face) {
+    std::sort(face.begin(), face.end());
+    return face;
+}
+
+// The faces that close a gap of three or four boundary edges (`loop` as the faces run them,
+// so the new faces run it the other way), or none where they would repeat a face or an edge: a
+// four-edge gap is split along its shorter diagonal, or along the other where that one is an
+// edge already.
+std::vector<Face> closing_faces(const std::vector<int>& loop, const Eigen::MatrixX3d& points,
+                                const std::set<Face>& existing,
+                                const std::set<std::pair<int, int>>& edges) {
+    std::vector<std::vector<Face>> candidates;
+    if (loop.size() == 3) {
+        candidates.push_back({{loop[0], loop[2], loop[1]}});
+    } else {
+        const auto split = [&](std::size_t s) -> std::vector<Face> {
+            const int a = loop[s];
+            const int b = loop[s + 1];
+            const int c = loop[s + 2];
+            const int d = loop[(s + 3) % 4];
+            if (edges.contains(std::minmax(a, c))) {
+                return {};
+            }
+            return {{a, d, c}, {a, c, b}};
+        };
+        const auto length = [&](int a, int b) { return (points.row(a) - points.row(b)).norm(); };
+        const std::size_t shorter = length(loop[0], loop[2]) <= length(loop[1], loop[3]) ? 0 : 1;
+        candidates.push_back(split(shorter));
+        candidates.push_back(split(1 - shorter));
+    }
+    for (const std::vector<Face>& closing : candidates) {
+        if (!closing.empty() && std::none_of(closing.begin(), closing.end(), [&](const Face& f) {
+                return existing.contains(sorted(f));
+            })) {
+            return closing;
+        }
+    }
+    return {};
+}
+
+// Closes the gaps of three or four edges there are now; whether it closed any.
+bool close_small_gaps_once(TriangleMesh& mesh) {
+    std::set<Face> existing;
+    std::set<std::pair<int, int>> edges;
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        existing.insert(sorted({mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)}));
+        for (int k = 0; k < 3; ++k) {
+            edges.insert(std::minmax(mesh.F(f, k), mesh.F(f, (k + 1) % 3)));
+        }
+    }
+    std::vector<Face> added;
+    for (const std::vector<int>& loop : boundary_loops(mesh)) {
+        if (loop.size() == 3 || loop.size() == 4) {
+            for (const Face& face : closing_faces(loop, mesh.V, existing, edges)) {
+                existing.insert(sorted(face));
+                for (int k = 0; k < 3; ++k) {
+                    edges.insert(std::minmax(static_cast<int>(face[static_cast<std::size_t>(k)]),
+                                             static_cast<int>(face[(k + 1) % 3])));
+                }
+                added.push_back(face);
+            }
+        }
+    }
+    const Eigen::Index kept = mesh.F.rows();
+    mesh.F.conservativeResize(kept + static_cast<Eigen::Index>(added.size()), 3);
+    for (std::size_t f = 0; f < added.size(); ++f) {
+        for (int c = 0; c < 3; ++c) {
+            mesh.F(kept + static_cast<Eigen::Index>(f), c) = static_cast<int>(added[f][c]);
+        }
+    }
+    return !added.empty();
+}
+
+// A gap of three or four boundary edges is a face the fans did not agree on (each point's
+// Delaunay choice among its own neighbours differs across a near-square quadrilateral), not a
+// hole the sampling can show: it is closed, so that hole_area() and the spectrum see the
+// surface the points sample. Closing some can leave others where loops met at a vertex, so
+// until none is left (each pass takes boundary edges away and adds none).
+void close_small_gaps(TriangleMesh& mesh) {
+    while (close_small_gaps_once(mesh)) {
+    }
+}
+
 void check_points(const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& normals,
                   const PointCloudSurfaceOptions& options) {
     if (points.rows() < 4) {
@@ -541,6 +628,7 @@ TriangleMesh point_cloud_surface(const Eigen::MatrixX3d& points, const Eigen::Ma
             mesh.F(static_cast<Eigen::Index>(f), c) = static_cast<int>(faces[f][c]);
         }
     }
+    close_small_gaps(mesh);
     return mesh;
 }
 

@@ -5,12 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <map>
 #include <utility>
 
 #include "genflow/exceptions.h"
 #include "genflow/io/read_mesh.h"
+#include "genflow/mesh/boundary_loops.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/mesh/repair.h"
 #include "genflow/mesh/validate.h"
@@ -154,6 +157,48 @@ TEST(PointCloudSurface, NormalsKeepFacingSheetsApart) {
 // points: the surface on them keeps the mesh's area and volume to 1 %, is oriented outward
 // throughout (the faces that bridge a finger into a Möbius band are left out) and, repaired
 // into one manifold surface, loses under 1 % of its area.
+// Whether a boundary loop of three or four edges goes around faces rather than a gap: a lone
+// triangle (its own three edges), or two faces whose quadrilateral has both diagonals as edges.
+bool goes_around_faces(const std::vector<int>& loop,
+                       const std::map<std::pair<int, int>, int>& edges, const Eigen::MatrixX3i& F) {
+    if (loop.size() == 4) {
+        return edges.contains(std::minmax(loop[0], loop[2])) &&
+               edges.contains(std::minmax(loop[1], loop[3]));
+    }
+    std::array<int, 3> gap = {loop[0], loop[1], loop[2]};
+    std::sort(gap.begin(), gap.end());
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+        std::array<int, 3> face = {F(f, 0), F(f, 1), F(f, 2)};
+        std::sort(face.begin(), face.end());
+        if (face == gap) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Gaps of three or four edges are faces the fans did not agree on, below what the sampling can
+// show as a hole: they are closed (loops that short are left only around loose faces), and the
+// faces that close them keep the surface edge-manifold and consistently oriented.
+TEST(PointCloudSurface, ClosesGapsOfThreeOrFourEdges) {
+    const TriangleMesh sphere = make_icosphere(4);
+    const Eigen::MatrixX3d normals = vertex_normals(sphere);
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        const TriangleMesh noisy = add_noise(sphere, 0.5 * mean_edge_length(sphere), seed);
+        const TriangleMesh surface = point_cloud_surface(noisy.V, normals);
+        const auto edges = faces_per_edge(surface.F);
+        for (const std::vector<int>& loop : boundary_loops(surface)) {
+            if (loop.size() <= 4) {
+                EXPECT_TRUE(goes_around_faces(loop, edges, surface.F)) << seed;
+            }
+        }
+        EXPECT_TRUE(consistently_oriented(surface.F)) << seed;
+        for (const auto& [edge, faces] : edges) {
+            ASSERT_LE(faces, 2);
+        }
+    }
+}
+
 TEST(PointCloudSurface, MeshesTheVerticesOfABodyScan) {
     const auto data = test::data_directory();
     const std::filesystem::path path =

@@ -36,6 +36,8 @@ struct PointCloudSurfaceOptions {
 ///    left out. Each component then takes the side of its corners' normals, oriented along a
 ///    minimum spanning tree of the neighbours (Hoppe et al. 1992), and the whole the side
 ///    that encloses a positive volume (outward, on a closed or nearly closed surface).
+/// 4. A gap of three or four boundary edges, where the fans did not agree, is closed (a face,
+///    or two along the shorter diagonal that is not an edge yet), until none is left.
 ///
 /// The mesh may have small holes and non-manifold vertices where the sampling is too coarse
 /// for the surface's curvature (a finger two or three points across); repair_surface(), which
