@@ -200,17 +200,25 @@ void register_match_command(CLI::App& app) {
         ->required();
     command->add_option("-o,--output", options->output, "Deformed template (.obj, .ply, .off)")
         ->required();
-    command->add_option("--parts", options->parts,
-                        "Part tree of the template (JSON; layouts in docs/matching.md)");
-    command->add_option("--part-labels", options->part_labels,
-                        "Per-vertex part labels (one index per line), if the JSON names none");
-    command->add_option("--part-weights", options->part_weights,
-                        "Per-vertex part weights ('vertex part weight' lines), if the JSON "
-                        "names none");
-    command->add_option("--parts-pose", options->parts_pose,
-                        "The pose of the part file the template is in (its joint centres "
-                        "moved there; default: the pose the template's file name, or its last "
-                        "'_'-separated word, names, else the rest pose)");
+    CLI::Option* parts = command->add_option(
+        "--parts", options->parts, "Part tree of the template (JSON; layouts in docs/matching.md)");
+    // Labels or weights say which part a vertex is in: one of them, and only with a part tree.
+    CLI::Option* labels =
+        command->add_option("--part-labels", options->part_labels,
+                            "Per-vertex part labels (one index per line), if the JSON names none");
+    command
+        ->add_option("--part-weights", options->part_weights,
+                     "Per-vertex part weights ('vertex part weight' lines), if the JSON "
+                     "names none")
+        ->excludes(labels)
+        ->needs(parts);
+    labels->needs(parts);
+    command
+        ->add_option("--parts-pose", options->parts_pose,
+                     "The pose of the part file the template is in (its joint centres "
+                     "moved there; default: the pose the template's file name, or its last "
+                     "'_'-separated word, names, else the rest pose)")
+        ->needs(parts);
     command->add_option("--landmarks", options->landmarks,
                         "Known correspondences, one per line: 'i x y z' (template vertex i goes "
                         "to the point) or 'i j' (to target vertex j), 0-based, each with an "

@@ -108,6 +108,26 @@ TEST(MatchCli, AnUnwritableOutputFailsTheRunBeforeAnyWorkAndChangesNothing) {
               3);
 }
 
+// Part labels and part weights say the same thing two ways: one of them, and only with a part
+// tree (without one they were ignored silently).
+TEST(MatchCli, PartOptionsGoTogether) {
+    const test::TemporaryDirectory directory;
+    write_mesh(directory / "template.ply", make_limb(2));
+    const std::string command = "match " + quoted(directory / "template.ply") + " " +
+                                quoted(directory / "template.ply") + " -o " +
+                                quoted(directory / "out.ply");
+    for (const auto& [flags, says] :
+         {std::pair{" --parts p.json --part-labels l.txt --part-weights w.txt",
+                    "--part-labels excludes --part-weights"},
+          {" --part-labels l.txt", "--part-labels requires --parts"},
+          {" --parts-pose 1", "--parts-pose requires --parts"}}) {
+        const auto result = run_genflow(command + flags);
+        EXPECT_EQ(result.exit_code, 2) << flags;
+        EXPECT_NE(result.err.find(says), std::string::npos) << result.err;
+        EXPECT_FALSE(std::filesystem::exists(directory / "out.ply"));
+    }
+}
+
 TEST(MatchCli, CounterpartsHaveTheirSwitchAndReach) {
     const test::TemporaryDirectory directory;
     write_mesh(directory / "template.ply", make_limb(3));
