@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -75,6 +76,76 @@ MatchOptions paper_match_options() {
 
 namespace {
 
+// One rule on one option: whether it holds, the rule as the message states it, the value.
+struct OptionRule {
+    bool holds;
+    const char* rule;
+    double value;
+};
+
+// "nan", "inf", or the value as people write it.
+std::string shown(double value) {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+
+// Every rule on the numbers of MatchOptions, so that a bad one is named alone.
+std::vector<OptionRule> option_rules(const MatchOptions& o) {
+    using detail::finite_above;
+    using detail::finite_at_least;
+    const auto count = [](auto n) { return static_cast<double>(n); };
+    const double threshold = o.second_opinion.above;
+    const double alternatives_above = o.second_opinion.alternative_starts_above;
+    return {
+        {o.max_iterations >= 0, "max_iterations must be >= 0", count(o.max_iterations)},
+        {o.fine_iterations >= 0, "fine_iterations must be >= 0", count(o.fine_iterations)},
+        {finite_above(o.max_step, 0), "max_step must be a positive number", o.max_step},
+        {finite_at_least(o.stagnation_tolerance, 0), "stagnation_tolerance must be >= 0",
+         o.stagnation_tolerance},
+        {finite_above(o.h1_length, 0), "h1_length must be a positive number", o.h1_length},
+        {o.levels >= 0, "levels must be >= 0", count(o.levels)},
+        {o.coarse_vertices >= 100, "coarse_vertices must be >= 100", count(o.coarse_vertices)},
+        {finite_at_least(o.coarse_epsilon, 1), "coarse_epsilon must be >= 1", o.coarse_epsilon},
+        {o.refinement_iterations >= 0, "refinement_iterations must be >= 0",
+         count(o.refinement_iterations)},
+        {o.starts.candidates >= 1, "starts.candidates must be >= 1", count(o.starts.candidates)},
+        {o.starts.selection_iterations >= 0, "starts.selection_iterations must be >= 0",
+         count(o.starts.selection_iterations)},
+        {finite_at_least(o.starts.selection_tolerance, 0),
+         "starts.selection_tolerance must be >= 0", o.starts.selection_tolerance},
+        {finite_at_least(o.guided.signature_guidance, 0), "guided.signature_guidance must be >= 0",
+         o.guided.signature_guidance},
+        {finite_at_least(o.guided.eigenfunction_guidance, 0),
+         "guided.eigenfunction_guidance must be >= 0", o.guided.eigenfunction_guidance},
+        {finite_at_least(o.guided.stretch_weight, 0), "guided.stretch_weight must be >= 0",
+         o.guided.stretch_weight},
+        {o.guided.stiffness_candidates >= 1, "guided.stiffness_candidates must be >= 1",
+         count(o.guided.stiffness_candidates)},
+        {o.guided.guidance_candidates >= 1 && o.guided.guidance_candidates <= 8,
+         "guided.guidance_candidates must lie in [1, 8]", count(o.guided.guidance_candidates)},
+        {o.refinement.guidances >= 0 && o.refinement.guidances <= 8,
+         "refinement.guidances must lie in [0, 8]", count(o.refinement.guidances)},
+        {o.map_fit.max_fits >= 0, "map_fit.max_fits must be >= 0", count(o.map_fit.max_fits)},
+        {!std::isnan(threshold) && threshold >= 0, "second_opinion.above must be >= 0 or inf",
+         threshold},
+        {o.second_opinion.alternative_starts >= 0, "second_opinion.alternative_starts must be >= 0",
+         count(o.second_opinion.alternative_starts)},
+        {!std::isnan(alternatives_above) && alternatives_above >= 0,
+         "second_opinion.alternative_starts_above must be >= 0 or inf", alternatives_above},
+        {finite_above(o.articulated_finest_global, 0) && o.articulated_finest_global <= 1,
+         "articulated_finest_global must lie in (0, 1]", o.articulated_finest_global},
+        {finite_above(o.counterparts.reach, 0), "counterparts.reach must be a positive number",
+         o.counterparts.reach},
+        {finite_at_least(o.partial.normal_weight, 0), "partial.normal_weight must be >= 0",
+         o.partial.normal_weight},
+        {o.quasi_newton_memory >= 0, "quasi_newton_memory must be >= 0",
+         count(o.quasi_newton_memory)},
+        {o.quasi_newton_memory == 0 || !o.implicit,
+         "quasi_newton_memory must be 0 with implicit steps", count(o.quasi_newton_memory)},
+    };
+}
+
 void check_landmarks(const LandmarkOptions& landmarks, Eigen::Index template_vertices) {
     if (!detail::finite_at_least(landmarks.weight, 0)) {
         throw InvalidInput("match: landmarks.weight must be finite and non-negative");
@@ -124,42 +195,10 @@ void check_inputs(const TriangleMesh& template_mesh, const TriangleMesh& target,
             throw InvalidInput(std::string("match: the ") + name + " has zero extent");
         }
     }
-    if (options.max_iterations < 0 || !detail::finite_above(options.max_step, 0) ||
-        !detail::finite_at_least(options.stagnation_tolerance, 0) ||
-        options.starts.candidates < 1 || !detail::finite_above(options.h1_length, 0) ||
-        options.fine_iterations < 0 || options.levels < 0 || options.coarse_vertices < 100 ||
-        options.starts.selection_iterations < 0 ||
-        !detail::finite_at_least(options.coarse_epsilon, 1) ||
-        !detail::finite_at_least(options.starts.selection_tolerance, 0) ||
-        !detail::finite_at_least(options.guided.signature_guidance, 0) ||
-        !detail::finite_at_least(options.guided.eigenfunction_guidance, 0) ||
-        !detail::finite_at_least(options.guided.stretch_weight, 0) ||
-        options.guided.stiffness_candidates < 1 || options.guided.guidance_candidates < 1 ||
-        options.guided.guidance_candidates > 8 || options.refinement.guidances < 0 ||
-        options.refinement.guidances > 8 || options.refinement_iterations < 0 ||
-        options.map_fit.max_fits < 0 || options.second_opinion.alternative_starts < 0 ||
-        std::isnan(options.second_opinion.above) || options.second_opinion.above < 0 ||
-        std::isnan(options.second_opinion.alternative_starts_above) ||
-        options.second_opinion.alternative_starts_above < 0 ||
-        !detail::finite_above(options.articulated_finest_global, 0) ||
-        options.articulated_finest_global > 1 ||
-        !detail::finite_above(options.counterparts.reach, 0) || options.quasi_newton_memory < 0 ||
-        !detail::finite_at_least(options.partial.normal_weight, 0) ||
-        (options.quasi_newton_memory > 0 && options.implicit)) {
-        throw InvalidInput(
-            "match: need max_iterations >= 0, fine_iterations >= 0, max_step > 0, "
-            "stagnation_tolerance >= 0, h1_length > 0, levels >= 0, coarse_vertices >= 100, "
-            "coarse_epsilon >= 1, refinement_iterations >= 0, starts.candidates >= 1, "
-            "starts.selection_iterations >= 0, starts.selection_tolerance >= 0, "
-            "guided.signature_guidance >= 0, guided.eigenfunction_guidance >= 0, "
-            "guided.stretch_weight >= 0, guided.stiffness_candidates >= 1, "
-            "guided.guidance_candidates in [1, 8], refinement.guidances in [0, 8], "
-            "map_fit.max_fits >= 0, second_opinion.above >= 0, "
-            "second_opinion.alternative_starts >= 0, second_opinion.alternative_starts_above >= 0 "
-            "and "
-            "articulated_finest_global in (0, 1], counterparts.reach > 0, "
-            "partial.normal_weight >= 0, "
-            "quasi_newton_memory >= 0 (0 with implicit steps)");
+    for (const OptionRule& rule : option_rules(options)) {
+        if (!rule.holds) {
+            throw InvalidInput("match: " + std::string(rule.rule) + ", got " + shown(rule.value));
+        }
     }
     check_landmarks(options.landmarks, template_mesh.V.rows());
     if (options.prior == MatchPrior::Articulated) {

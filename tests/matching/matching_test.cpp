@@ -1165,6 +1165,19 @@ TEST(Match, ProgressSeesOneFlowAtATimeAndStopsThemAll) {
     EXPECT_EQ(result.levels.size(), 1U);  // stopped on the coarsest level
 }
 
+// A bad option is named alone with its value (the message listed all 27 rules at once).
+TEST(Match, NamesTheOneBadOption) {
+    const TriangleMesh mesh = make_limb(2);
+    MatchOptions options;
+    options.coarse_epsilon = NAN;
+    try {
+        (void)match(mesh, mesh, options);
+        ADD_FAILURE() << "accepted";
+    } catch (const InvalidInput& e) {
+        EXPECT_EQ(std::string(e.what()), "match: coarse_epsilon must be >= 1, got nan");
+    }
+}
+
 TEST(Match, RejectsBadInput) {
     const TriangleMesh mesh = make_limb(2);
     EXPECT_THROW((void)match(mesh, TriangleMesh{}), InvalidInput);
