@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include "cli_support.h"
@@ -66,6 +67,9 @@ int main(int argc, char** argv) {
     } catch (const genflow::InvalidInput& e) {
         std::cerr << "genflow: " << printable(e.what()) << '\n';
         return kBadInput;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "genflow: out of memory (the input is larger than this machine can hold)\n";
+        return kFailure;
     } catch (const std::exception& e) {
         std::cerr << "genflow: " << printable(e.what()) << '\n';
         return kFailure;
