@@ -30,7 +30,16 @@ std::string parse_error_message(const CLI::App& app, const CLI::ParseError& erro
         return "unknown command '" + genflow::cli::printable(argv[1]) + "' (commands: " + names +
                ")";
     }
-    return genflow::cli::printable(error.what()) + " (run '" + command + " --help')";
+    std::string problem = error.what();
+    // The number checks let through what CLI11 then cannot store: a count given as 1.5, or too
+    // large for its type. Said as the checks say it.
+    const std::string not_converted = "Could not convert: ";
+    if (const auto equals = problem.find(" = ");
+        problem.starts_with(not_converted) && equals != std::string::npos) {
+        problem = problem.substr(not_converted.size(), equals - not_converted.size()) +
+                  ": must be a whole number in range, got " + problem.substr(equals + 3);
+    }
+    return genflow::cli::printable(problem) + " (run '" + command + " --help')";
 }
 
 }  // namespace

@@ -79,6 +79,8 @@ TEST(Cli, NumericOptionsRefuseNanAndSayWhatTheyExpect) {
               "--rigidity-length: must be a number in [0, 10], got nan"},
              {"match " + mesh + " " + mesh + " -o " + out + " --alpha 1e9",
               "--alpha: must be a number in [0.5, 1000], got 1e9"},
+             {"smooth " + mesh + " " + out + " --steps 1.5",
+              "--steps: must be a whole number in range, got 1.5"},
              {"match " + mesh + " " + mesh + " -o " + out + " --second-opinion-above nan",
               "--second-opinion-above: must be a number >= 0 or inf, got nan"},
          }) {
