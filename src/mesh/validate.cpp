@@ -17,7 +17,7 @@ namespace genflow {
 namespace {
 
 // One face's traversal of an undirected edge (lo, hi).
-struct HalfEdge {
+struct EdgeTraversal {
     int lo;
     int hi;
     bool forward;  // the face runs lo → hi
@@ -166,7 +166,7 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
     r.duplicate_faces = duplicate.count;
 
     // Edges: group the half-edges of the good faces by undirected edge.
-    std::vector<HalfEdge> half_edges;
+    std::vector<EdgeTraversal> half_edges;
     half_edges.reserve(3 * good_faces.size());
     for (const Eigen::Index f : good_faces) {
         for (int k = 0; k < 3; ++k) {
@@ -180,9 +180,10 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
             }
         }
     }
-    std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
-        return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
-    });
+    std::sort(half_edges.begin(), half_edges.end(),
+              [](const EdgeTraversal& x, const EdgeTraversal& y) {
+                  return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
+              });
 
     // Corners (3f + k) are united across manifold edges: a vertex whose corners end in more than
     // one set has several fans, i.e. is non-manifold.
@@ -197,7 +198,7 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
                half_edges[end].hi == half_edges[begin].hi) {
             ++end;
         }
-        const HalfEdge& first = half_edges[begin];
+        const EdgeTraversal& first = half_edges[begin];
         ++r.num_edges;
         vertex_sets.unite(static_cast<std::size_t>(first.lo), static_cast<std::size_t>(first.hi));
         const std::size_t faces_on_edge = end - begin;
@@ -208,7 +209,7 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
             on_boundary[static_cast<std::size_t>(first.lo)] = true;
             on_boundary[static_cast<std::size_t>(first.hi)] = true;
         } else if (faces_on_edge == 2) {
-            const HalfEdge& second = half_edges[begin + 1];
+            const EdgeTraversal& second = half_edges[begin + 1];
             if (first.forward == second.forward) {
                 inconsistent.add(first.lo, first.hi);
             }
