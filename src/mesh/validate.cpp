@@ -124,7 +124,8 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
             continue;
         }
         good_faces.push_back(f);
-        if (non_finite.count == 0) {
+        // Their geometry only where every coordinate is one that products of lengths take.
+        if (non_finite.count == 0 && huge.count == 0) {
             const detail::Triangle t(mesh, f);
             if (t.degenerate()) {
                 zero_area.add(f);
