@@ -2,21 +2,16 @@
 // genflow eval PAIRS.json: runs the matcher over every pair of a pairs.json (the format of
 // $GENFLOW_DATA/pairs.json) with each prior and prints the correspondence error against the
 // ground truth as a Markdown table (or JSON).
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli_support.h"
 #include "commands.h"
 #include "genflow/exceptions.h"
-#include "genflow/io/read_file.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/read_part_model.h"
 #include "genflow/io/write_mesh.h"
@@ -26,6 +21,7 @@
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/surface_distance.h"
 #include "match_flags.h"
+#include "pairs_file.h"
 
 namespace genflow::cli {
 
@@ -42,59 +38,15 @@ struct EvalOptions {
     bool json = false;
 };
 
-nlohmann::json read_pairs(const std::filesystem::path& path) {
-    const std::string text = read_file(path);
-    try {
-        nlohmann::json pairs = nlohmann::json::parse(text);
-        if (!pairs.is_array()) {
-            throw IoError(path.string() + ": expected a JSON array of pairs");
-        }
-        return pairs;
-    } catch (const nlohmann::json::exception& e) {
-        throw IoError(path.string() + ": not valid JSON (" + e.what() + ")");
-    }
-}
-
-std::string field(const std::filesystem::path& file, const nlohmann::json& pair, const char* key) {
-    if (!pair.contains(key) || !pair[key].is_string()) {
-        throw IoError(file.string() + ": a pair lacks the string \"" + key + "\"");
-    }
-    return pair[key].get<std::string>();
-}
-
-// A pair's name, which names its files in --output-dir: a plain file name, so that no pairs
-// file can write outside that directory (no "..", no separator, not absolute, not hidden).
-std::string output_name(const std::filesystem::path& file, const std::string& name) {
-    if (name.empty() || name.front() == '.' || name.find('/') != std::string::npos ||
-        name.find('\0') != std::string::npos) {
-        throw IoError(file.string() +
-                      ": a pair's name must be a plain file name (no '/', not "
-                      "starting with '.'), got \"" +
-                      name + "\"");
-    }
-    return name;
-}
-
 // The pair's target: its "target_remeshed" file, or else the ground truth simplified to the
 // share "target_simplified" of its vertices (quadric collapses onto kept vertices: another
 // sampling and connectivity than the template's, on the same surface), so that any two poses
 // of a subject make a pair without a remesher.
-TriangleMesh target_of(const std::filesystem::path& file, const std::filesystem::path& base,
-                       const std::string& name, const nlohmann::json& pair,
-                       const TriangleMesh& truth) {
-    if (pair.contains("target_remeshed")) {
-        return read_mesh(base / field(file, pair, "target_remeshed"));
+TriangleMesh target_of(const EvalPair& pair, const TriangleMesh& truth) {
+    if (pair.target_remeshed) {
+        return read_mesh(*pair.target_remeshed);
     }
-    const auto share = pair.find("target_simplified");
-    if (share == pair.end()) {
-        throw IoError(file.string() + ": pair " + name +
-                      " has neither \"target_remeshed\" nor \"target_simplified\"");
-    }
-    if (!share->is_number() || !(share->get<double>() > 0 && share->get<double>() <= 1)) {
-        throw IoError(file.string() + ": pair " + name +
-                      ": \"target_simplified\" must be a share of the vertices in (0, 1]");
-    }
-    return coarsen_to_share(truth, share->get<double>()).mesh;
+    return coarsen_to_share(truth, pair.target_simplified).mesh;
 }
 
 // The mean distance of a stage's vertices from where the ground truth has them.
@@ -110,9 +62,9 @@ double stage_error(const MatchStage& stage, const TriangleMesh& truth) {
 
 void run_eval(const EvalOptions& options) {
     const std::filesystem::path file(options.pairs);
-    const nlohmann::json pairs = read_pairs(file);
     const std::filesystem::path base =
         options.data_dir.empty() ? file.parent_path() : std::filesystem::path(options.data_dir);
+    const std::vector<EvalPair> pairs = read_pairs_file(file, base, options.only);
     nlohmann::json rows = nlohmann::json::array();
     const std::filesystem::path output_dir(options.output_dir);
     if (!output_dir.empty()) {
@@ -124,34 +76,18 @@ void run_eval(const EvalOptions& options) {
             "|\n"
             "|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
     }
-    for (const auto& pair : pairs) {
-        const std::string name = output_name(file, field(file, pair, "name"));
-        if (!options.only.empty() &&
-            std::find(options.only.begin(), options.only.end(), name) == options.only.end()) {
-            continue;
-        }
-        const TriangleMesh template_mesh = read_mesh(base / field(file, pair, "template"));
-        const TriangleMesh truth = read_mesh(base / field(file, pair, "target_ground_truth"));
-        const TriangleMesh target = target_of(file, base, name, pair, truth);
+    for (const EvalPair& pair : pairs) {
+        const std::string& name = pair.name;
+        const TriangleMesh template_mesh = read_mesh(pair.template_mesh);
+        const TriangleMesh truth = read_mesh(pair.ground_truth);
+        const TriangleMesh target = target_of(pair, truth);
         if (truth.V.rows() != template_mesh.V.rows()) {
             throw IoError(file.string() + ": pair " + name +
                           ": the ground truth has another vertex count than the template");
         }
         std::optional<PartModel> parts;
-        if (pair.contains("template_parts")) {  // optional: for the articulated prior
-            PartFiles files{base / field(file, pair, "template_parts")};
-            files.template_name =
-                std::filesystem::path(field(file, pair, "template")).stem().string();
-            if (pair.contains("template_parts_pose")) {
-                files.pose = field(file, pair, "template_parts_pose");
-            }
-            if (pair.contains("template_part_labels")) {
-                files.labels = base / field(file, pair, "template_part_labels");
-            }
-            if (pair.contains("template_part_weights")) {
-                files.weights = base / field(file, pair, "template_part_weights");
-            }
-            parts = read_part_model(files, template_mesh.V.rows());
+        if (pair.parts) {  // optional: for the articulated prior
+            parts = read_part_model(*pair.parts, template_mesh.V.rows());
         }
         const double diagonal = bounding_box_diagonal(truth);
         // The target as matched (a simplified one exists nowhere else), to look at the results

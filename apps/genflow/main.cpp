@@ -35,6 +35,7 @@ std::string parse_error_message(const CLI::App& app, const CLI::ParseError& erro
     // large for its type. Said as the checks say it.
     const std::string not_converted = "Could not convert: ";
     if (const auto equals = problem.find(" = ");
+        dynamic_cast<const CLI::ConversionError*>(&error) != nullptr &&
         problem.starts_with(not_converted) && equals != std::string::npos) {
         problem = problem.substr(not_converted.size(), equals - not_converted.size()) +
                   ": must be a whole number in range, got " + problem.substr(equals + 3);

@@ -9,10 +9,6 @@
 #include <string>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "genflow/exceptions.h"
 #include "genflow/operators/mass_matrix.h"
 #include "operators/triangle.h"
@@ -31,22 +27,6 @@ constexpr Eigen::Index kParallelLoopThreshold = 20000;
 // The shells of shell_radius2(): this many per grid cell, and at most this many per query.
 constexpr int kShellsPerCell = 4;
 constexpr int kMaxShells = 4096;
-
-int thread_count() {
-#ifdef _OPENMP
-    return omp_get_max_threads();
-#else
-    return 1;
-#endif
-}
-
-int thread_id() {
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-}
 
 // log Σ exp(v) over the finite entries; −inf if there is none. The threads compute the terms,
 // and one sums them in order: the same bits for any thread count (per-thread partial sums
@@ -469,19 +449,25 @@ SourceSums sum_source(const Side& source, const Side& target, const Parameters& 
     return sums;
 }
 
+// The target side's queries of a large evaluation run in this many contiguous stretches (in
+// cell order), each scattering into rows of its own, which are then added stretch by stretch:
+// the sums' order is the same for any thread count, and so are the results' bits. Eight keep
+// eight cores busy; their rows cost 8 × 32 bytes per source point.
+constexpr std::size_t kScatterStretches = 8;
+
 // Buffers reused from one evaluation to the next: the moving side, and the target side's
-// per-thread rows.
+// rows per stretch.
 struct Workspace {
     Side source;                        // the moving side, refilled by each evaluation
-    std::vector<RowMatrixX4d> coupled;  // per thread, per source slot: the g-part's Σc, Σc·y
-    std::vector<double> log_scale;      // per thread: the common factor of its `coupled`
+    std::vector<RowMatrixX4d> coupled;  // per stretch, per source slot: the g-part's Σc, Σc·y
+    std::vector<double> log_scale;      // per stretch: the common factor of its `coupled`
 };
 
 // The target side: g_j over the source, and the g-part of the coupling, which needs all of S
 // (c_ij = S^{1/(2α)−1} a_i b_j d_ij^{−α−1} g_j^{−2} for that part) only through the common
 // factor S^{1/(2α)−1}. Each query therefore scatters the rest, b_j/g_j · share_ji/d_ij, into
-// its thread's rows of the source slots (the queries run in cell order, so these rows stay
-// in cache) and nothing per pair is kept. A thread's rows share one factor exp(log_scale),
+// its stretch's rows of the source slots (the queries run in cell order, so these rows stay
+// in cache) and nothing per pair is kept. A stretch's rows share one factor exp(log_scale),
 // set by its first query and raised when a later one would otherwise overflow.
 struct TargetSums {
     Eigen::VectorXd log_g;
@@ -492,41 +478,44 @@ TargetSums sum_target(const Side& target, const Side& source, const Parameters& 
                       Workspace& work) {
     const Eigen::Index count = target.points.rows();
     TargetSums sums{Eigen::VectorXd::Constant(count, kMinusInfinity), 0};
-    const auto threads = static_cast<std::size_t>(thread_count());
+    const std::size_t stretches = count > kParallelThreshold ? kScatterStretches : 1;
     const auto source_slots = static_cast<Eigen::Index>(source.active.size());
-    work.coupled.resize(threads);
-    work.log_scale.assign(threads, kMinusInfinity);
+    work.coupled.resize(stretches);
+    work.log_scale.assign(stretches, kMinusInfinity);
     const std::size_t queries = target.active.size();  // in cell order, as in sum_source
     std::size_t pairs = 0;
-#pragma omp parallel reduction(+ : pairs) if (count > kParallelThreshold)
+#pragma omp parallel reduction(+ : pairs) if (stretches > 1)
     {
-        const auto thread = static_cast<std::size_t>(thread_id());
-        RowMatrixX4d& coupled = work.coupled[thread];
-        coupled.setZero(source_slots, 4);
-        double& log_scale = work.log_scale[thread];
         Neighbours found;
         std::vector<double> term_over_d;
-#pragma omp for schedule(static, 128)
-        for (std::size_t slot = 0; slot < queries; ++slot) {
-            const std::uint32_t j = target.active[target.grid.id(static_cast<std::uint32_t>(slot))];
-            const KeptTerms terms = weigh_terms(target, source, p, j, found, term_over_d);
-            pairs += found.count;
-            sums.log_g[j] = terms.log_f;
-            // b_j/g_j · share_ji/d_ij = exp(log b_j − log g_j − log Σt) · t_i/d_ij.
-            const double log_factor = target.log_weight[j] - terms.log_f - std::log(terms.sum);
-            if (log_scale == kMinusInfinity) {
-                log_scale = log_factor;
-            } else if (log_factor - log_scale > 300) {
-                coupled *= std::exp(log_scale - log_factor);  // rare: far larger than before
-                log_scale = log_factor;
-            }
-            const double factor = std::exp(log_factor - log_scale);
-            const Eigen::RowVector3d y = target.points.row(j);
-            for (std::size_t k = 0; k < found.count; ++k) {
-                const double c = factor * term_over_d[k];
-                const auto row = static_cast<Eigen::Index>(found.slots[k]);
-                coupled(row, 0) += c;
-                coupled.row(row).tail<3>() += c * y;
+#pragma omp for schedule(dynamic, 1)
+        for (std::size_t stretch = 0; stretch < stretches; ++stretch) {
+            RowMatrixX4d& coupled = work.coupled[stretch];
+            coupled.setZero(source_slots, 4);
+            double& log_scale = work.log_scale[stretch];
+            const std::size_t end = queries * (stretch + 1) / stretches;
+            for (std::size_t slot = queries * stretch / stretches; slot < end; ++slot) {
+                const std::uint32_t j =
+                    target.active[target.grid.id(static_cast<std::uint32_t>(slot))];
+                const KeptTerms terms = weigh_terms(target, source, p, j, found, term_over_d);
+                pairs += found.count;
+                sums.log_g[j] = terms.log_f;
+                // b_j/g_j · share_ji/d_ij = exp(log b_j − log g_j − log Σt) · t_i/d_ij.
+                const double log_factor = target.log_weight[j] - terms.log_f - std::log(terms.sum);
+                if (log_scale == kMinusInfinity) {
+                    log_scale = log_factor;
+                } else if (log_factor - log_scale > 300) {
+                    coupled *= std::exp(log_scale - log_factor);  // rare: far larger than before
+                    log_scale = log_factor;
+                }
+                const double factor = std::exp(log_factor - log_scale);
+                const Eigen::RowVector3d y = target.points.row(j);
+                for (std::size_t k = 0; k < found.count; ++k) {
+                    const double c = factor * term_over_d[k];
+                    const auto row = static_cast<Eigen::Index>(found.slots[k]);
+                    coupled(row, 0) += c;
+                    coupled.row(row).tail<3>() += c * y;
+                }
             }
         }
     }
@@ -703,13 +692,12 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
     const double base = (1 / (2 * p.alpha) - 1) * log_S;
     const Eigen::Index n = source.points.rows();
     const auto source_slots = static_cast<Eigen::Index>(source.active.size());
-    // Per source point, the f-part and then each thread's g-part times its common factor.
-    std::vector<double> thread_factor(work.coupled.size(), 0.0);
-    for (std::size_t thread = 0; thread < work.coupled.size(); ++thread) {
-        if (work.log_scale[thread] != kMinusInfinity &&
-            work.coupled[thread].rows() == source_slots) {
-            thread_factor[thread] = std::exp(base + work.log_scale[thread]);
-        }  // else a thread that ran no query
+    // Per source point, the f-part and then each stretch's g-part times its common factor.
+    std::vector<double> stretch_factor(work.coupled.size(), 0.0);
+    for (std::size_t stretch = 0; stretch < work.coupled.size(); ++stretch) {
+        if (work.log_scale[stretch] != kMinusInfinity) {
+            stretch_factor[stretch] = std::exp(base + work.log_scale[stretch]);
+        }  // else a stretch without queries
     }
     RowMatrixX4d accumulated = RowMatrixX4d::Zero(n, 4);  // Σc, Σc·y
 #pragma omp parallel for schedule(static) if (source_slots > kParallelLoopThreshold)
@@ -720,9 +708,9 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
                           std::exp(base + log_coverage + source.log_weight[i] - f.log_f[i]) *
                           f.moments.row(i))
                     : Eigen::RowVector4d::Zero();
-        for (std::size_t thread = 0; thread < thread_factor.size(); ++thread) {
-            if (thread_factor[thread] > 0) {
-                row += thread_factor[thread] * work.coupled[thread].row(slot);
+        for (std::size_t stretch = 0; stretch < stretch_factor.size(); ++stretch) {
+            if (stretch_factor[stretch] > 0) {
+                row += stretch_factor[stretch] * work.coupled[stretch].row(slot);
             }
         }
         accumulated.row(i) = row;

@@ -85,15 +85,20 @@ std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
     return path.parent_path() / name;
 }
 
-// The file a write to `path` replaces: the one a symbolic link points to, so that the link
-// stays; else `path` itself.
+// The file a write to `path` replaces: the one a chain of symbolic links ends at, so that the
+// links stay (even when that file is yet to be written); else `path` itself. The chain is
+// followed as the kernel follows it, up to its limit of 40 links.
 std::filesystem::path written_through(const std::filesystem::path& path) {
+    std::filesystem::path current = path;
     std::error_code error;
-    if (!std::filesystem::is_symlink(path, error)) {
-        return path;
+    for (int link = 0; std::filesystem::is_symlink(current, error); ++link) {
+        const std::filesystem::path target = std::filesystem::read_symlink(current, error);
+        if (error || link == 40) {
+            throw OutputError(path.string() + ": a symbolic link that cannot be followed");
+        }
+        current = target.is_absolute() ? target : current.parent_path() / target;
     }
-    const std::filesystem::path target = std::filesystem::weakly_canonical(path, error);
-    return error ? path : target;
+    return current;
 }
 
 // Moves a finished temporary into place.
@@ -158,7 +163,8 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
     if (path.filename().empty()) {
         throw OutputError(name + ": not a file name");
     }
-    Pending file{temporary_sibling(written_through(path)), written_through(path)};
+    const std::filesystem::path target = written_through(path);
+    Pending file{temporary_sibling(target), target};
     file.slot = track(file.temporary);
     const int fd = ::open(file.temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) {

@@ -9,6 +9,7 @@
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
 #include "genflow/io/mesh_format.h"
+#include "operators/triangle.h"
 
 namespace genflow {
 
@@ -134,6 +135,10 @@ void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
     if (mesh.F.size() > 0 && (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows())) {
         throw InvalidInput("write_mesh: face indices must lie in [0, " +
                            std::to_string(mesh.V.rows()) + ")");
+    }
+    // The readers refuse such a file: what cannot be read back is not written.
+    if (!detail::all_finite(mesh.V)) {
+        throw InvalidInput(path.string() + ": the mesh to write has non-finite coordinates");
     }
     std::string bytes;
     switch (*format) {

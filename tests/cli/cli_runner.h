@@ -26,10 +26,11 @@ inline std::string read_text(const std::filesystem::path& path) {
     return buffer.str();
 }
 
-/// Runs `genflow <arguments>` (arguments are passed to the shell as written) with no input.
-inline CliResult run_genflow(const std::string& arguments) {
+/// Runs `genflow <arguments>` (arguments are passed to the shell as written) with no input,
+/// after `prefix` (shell text such as "cd DIR && " or "NAME=value ").
+inline CliResult run_genflow_after(const std::string& prefix, const std::string& arguments) {
     const TemporaryDirectory capture;
-    const std::string command = std::string("'") + GENFLOW_CLI_PATH + "' " + arguments + " >'" +
+    const std::string command = prefix + "'" + GENFLOW_CLI_PATH + "' " + arguments + " >'" +
                                 (capture / "out").string() + "' 2>'" + (capture / "err").string() +
                                 "' </dev/null";
     const int status = std::system(command.c_str());
@@ -38,6 +39,11 @@ inline CliResult run_genflow(const std::string& arguments) {
     result.out = read_text(capture / "out");
     result.err = read_text(capture / "err");
     return result;
+}
+
+/// Runs `genflow <arguments>` (arguments are passed to the shell as written) with no input.
+inline CliResult run_genflow(const std::string& arguments) {
+    return run_genflow_after("", arguments);
 }
 
 /// The path in single quotes for the shell. Built by appending: `"'" + string` trips a GCC 12

@@ -46,64 +46,6 @@ TEST(Cli, UsageErrorsAreOneLineWithExitCode2) {
     }
 }
 
-// An unknown command is named with the commands there are; another usage error points to the
-// help of the command given.
-TEST(Cli, UsageErrorsSayWhatToDo) {
-    const auto unknown = run_genflow("frobnicate");
-    EXPECT_EQ(unknown.err,
-              "genflow: unknown command 'frobnicate' (commands: info, smooth, distance, match, "
-              "eval, benchmark, demo)\n");
-    const auto bare = run_genflow("match");
-    EXPECT_NE(bare.err.find("(run 'genflow match --help')"), std::string::npos) << bare.err;
-}
-
-// Every numeric option refuses nan and infinities (CLI11's checks let nan through, and the
-// default was used silently) and says what it expected, its bounds as people write them.
-TEST(Cli, NumericOptionsRefuseNanAndSayWhatTheyExpect) {
-    const test::TemporaryDirectory directory;
-    write_mesh(directory / "s.ply", make_icosphere(1));
-    const std::string mesh = quoted(directory / "s.ply");
-    const std::string out = quoted(directory / "o.ply");
-    for (const auto& [arguments, says] : {
-             std::pair{"smooth " + mesh + " " + out + " --lambda nan",
-                       "--lambda: must be a positive number, got nan"},
-             {"smooth " + mesh + " " + out + " --dt inf",
-              "--dt: must be a positive number, got inf"},
-             {"distance " + mesh + " " + mesh + " --eps nan",
-              "--eps: must be a positive length up to 1e+50, got nan"},
-             {"distance " + mesh + " " + mesh + " --eps -1",
-              "--eps: must be a positive length up to 1e+50, got -1"},
-             {"distance " + mesh + " " + mesh + " --eps 1e300",
-              "--eps: must be a positive length up to 1e+50, got 1e300"},
-             {"match " + mesh + " " + mesh + " -o " + out + " --rigidity-length nan",
-              "--rigidity-length: must be a number in [0, 10], got nan"},
-             {"match " + mesh + " " + mesh + " -o " + out + " --alpha 1e9",
-              "--alpha: must be a number in [0.5, 1000], got 1e9"},
-             {"smooth " + mesh + " " + out + " --steps 1.5",
-              "--steps: must be a whole number in range, got 1.5"},
-             {"match " + mesh + " " + mesh + " -o " + out + " --second-opinion-above nan",
-              "--second-opinion-above: must be a number >= 0 or inf, got nan"},
-         }) {
-        const auto result = run_genflow(arguments);
-        EXPECT_EQ(result.exit_code, 2) << arguments;
-        EXPECT_NE(result.err.find(says), std::string::npos) << result.err;
-        EXPECT_EQ(count_lines(result.err), 1) << result.err;
-        EXPECT_FALSE(std::filesystem::exists(directory / "o.ply"));
-    }
-}
-
-// A file's name is printed with its control characters escaped: a newline or an escape
-// sequence in it cannot split the message or drive the terminal.
-TEST(Cli, FileNamesArePrintedWithControlCharactersEscaped) {
-    const test::TemporaryDirectory directory;
-    test::write_bytes(directory / "a\nb\x1b[31m.ply", "");
-    const auto result = run_genflow("info " + quoted(directory / "a\nb\x1b[31m.ply"));
-    EXPECT_EQ(result.exit_code, 2);
-    EXPECT_EQ(count_lines(result.err), 1) << result.err;
-    EXPECT_NE(result.err.find("a\\nb\\x1b[31m.ply: empty file"), std::string::npos) << result.err;
-    EXPECT_EQ(result.err.find('\x1b'), std::string::npos);
-}
-
 TEST(Cli, InfoTextAndJsonOnAGeneratedTorus) {
     const test::TemporaryDirectory directory;
     write_mesh(directory / "torus.off", make_torus(30, 12));

@@ -48,6 +48,22 @@ TEST(AtomicFile, KeepsPermissionsAndWritesThroughALink) {
               std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
 }
 
+// A chain of links is followed to its end, also when that file is yet to be written; a loop of
+// links is refused.
+TEST(AtomicFile, FollowsAChainOfLinksAndRefusesALoop) {
+    const test::TemporaryDirectory directory;
+    std::filesystem::create_directory(directory / "sub");
+    std::filesystem::create_symlink("sub/middle.txt", directory / "first.txt");
+    std::filesystem::create_symlink("last.txt", directory / "sub" / "middle.txt");
+    write_file_atomically(directory / "first.txt", "through");
+    EXPECT_TRUE(std::filesystem::is_symlink(directory / "first.txt"));
+    EXPECT_TRUE(std::filesystem::is_symlink(directory / "sub" / "middle.txt"));
+    EXPECT_EQ(read_file(directory / "sub" / "last.txt"), "through");
+    std::filesystem::create_symlink("loop.txt", directory / "loop.txt");
+    EXPECT_THROW(check_output_path(directory / "loop.txt"), OutputError);
+    EXPECT_THROW(write_file_atomically(directory / "loop.txt", "x"), OutputError);
+}
+
 // The outputs of a transaction appear together at commit(); without it, none changes and no
 // temporary is left.
 TEST(AtomicFile, ATransactionWritesAllOrNone) {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "genflow/exceptions.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/mesh/primitives.h"
@@ -73,6 +75,20 @@ TEST(WriteMesh, RejectsUnknownOrStlExtensions) {
     const test::TemporaryDirectory directory;
     EXPECT_THROW(write_mesh(directory / "out.xyz", make_icosphere(0)), IoError);
     EXPECT_THROW(write_mesh(directory / "out.stl", make_icosphere(0)), IoError);
+    EXPECT_TRUE(std::filesystem::is_empty(directory.path()));
+}
+
+// A result with a NaN or an infinity is not written: no reader would take the file back.
+TEST(WriteMesh, RefusesNonFiniteCoordinatesAndWritesNothing) {
+    const test::TemporaryDirectory directory;
+    for (const double bad :
+         {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+        TriangleMesh mesh = make_icosphere(0);
+        mesh.V(3, 1) = bad;
+        for (const char* name : {"out.ply", "out.obj", "out.off"}) {
+            EXPECT_THROW(write_mesh(directory / name, mesh), InvalidInput) << name;
+        }
+    }
     EXPECT_TRUE(std::filesystem::is_empty(directory.path()));
 }
 

@@ -83,16 +83,21 @@ TEST(PointCloudSurface, CoversAJitteredPlaneWithoutAFold) {
     }
 }
 
+// The surface of `sphere`'s points moved by noise of half a mean edge (draw `seed`), as a
+// scanner's, with the sphere's own normals.
+TriangleMesh surface_of_noisy_sphere(const TriangleMesh& sphere, std::uint64_t seed) {
+    const TriangleMesh noisy = add_noise(sphere, 0.5 * mean_edge_length(sphere), seed);
+    return point_cloud_surface(noisy.V, vertex_normals(sphere));
+}
+
 // A sphere's points with noise of half a mean edge, as a scanner's, and their normals: the faces
 // that fans agree on close nearly all of it. Told in the tangent plane whether two faces fold
 // onto each other, a corner lifted off the plane by the noise does not turn the test (tested in
 // space, 4601 faces of 5120 were kept and the holes closed 15–26 % of the surface).
 TEST(PointCloudSurface, NoiseAlongTheNormalLeavesFewHoles) {
     const TriangleMesh sphere = make_icosphere(4);
-    const Eigen::MatrixX3d normals = vertex_normals(sphere);
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-        const TriangleMesh noisy = add_noise(sphere, 0.5 * mean_edge_length(sphere), seed);
-        const TriangleMesh surface = point_cloud_surface(noisy.V, normals);
+        const TriangleMesh surface = surface_of_noisy_sphere(sphere, seed);
         EXPECT_GT(surface.F.rows(), 0.97 * static_cast<double>(sphere.F.rows())) << seed;
         const double holes = hole_area(surface);
         EXPECT_LT(holes / (holes + surface_area(surface)), 0.12) << seed;
@@ -181,11 +186,8 @@ bool goes_around_faces(const std::vector<int>& loop,
 // show as a hole: they are closed (loops that short are left only around loose faces), and the
 // faces that close them keep the surface edge-manifold and consistently oriented.
 TEST(PointCloudSurface, ClosesGapsOfThreeOrFourEdges) {
-    const TriangleMesh sphere = make_icosphere(4);
-    const Eigen::MatrixX3d normals = vertex_normals(sphere);
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-        const TriangleMesh noisy = add_noise(sphere, 0.5 * mean_edge_length(sphere), seed);
-        const TriangleMesh surface = point_cloud_surface(noisy.V, normals);
+        const TriangleMesh surface = surface_of_noisy_sphere(make_icosphere(4), seed);
         const auto edges = faces_per_edge(surface.F);
         for (const std::vector<int>& loop : boundary_loops(surface)) {
             if (loop.size() <= 4) {

@@ -31,7 +31,8 @@ struct WriteMeshOptions {
 ///
 /// \throws IoError      "<path>: <problem>" if the extension is not .obj, .ply or .off, or the
 ///                      file cannot be written.
-/// \throws InvalidInput if F holds an index outside V (the file would be unreadable).
+/// \throws InvalidInput if F holds an index outside V, or V a non-finite coordinate ("<path>:
+///                      ..."; the file would be unreadable).
 void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
                 const WriteMeshOptions& options = {});
 
