@@ -629,11 +629,13 @@ nlohmann::json row_of(const BenchmarkOptions& options, const Shape& from, const 
 }
 
 void print_row(const nlohmann::json& row) {
-    const std::string pair = row["from"].get<std::string>() + " → " + row["to"].get<std::string>();
+    // Names from file names, and messages that quote them, escaped (printable()).
+    const std::string pair =
+        printable(row["from"].get<std::string>() + " → " + row["to"].get<std::string>());
     const char* kind = row["within_subject"].get<bool>() ? "within" : "across";
     if (row.contains("failed")) {
         std::printf("| %s | %s | failed: %s | | | |\n", pair.c_str(), kind,
-                    row["failed"].get<std::string>().c_str());
+                    printable(row["failed"].get<std::string>()).c_str());
     } else {
         std::printf("| %s | %s | %.2f | %.2f | %s | %.1f s |\n", pair.c_str(), kind,
                     100 * row["mean"].get<double>(), 100 * row["mean_point_map"].get<double>(),

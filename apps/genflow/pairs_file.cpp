@@ -39,15 +39,18 @@ std::string string_field(const std::filesystem::path& file, const json& pair,
     return *value;
 }
 
-// A pair's name names its files in --output-dir: a plain file name, so that no pairs file can
-// write outside that directory (no "..", no separator, not absolute, not hidden).
+// A pair's name names its files in --output-dir and rows of the printed table: a plain file
+// name, so that no pairs file can write outside that directory (no "..", no separator, not
+// absolute, not hidden) or drive the terminal.
 std::string plain_name(const std::filesystem::path& file, const json& pair, std::size_t index) {
     std::string name = string_field(file, pair, "pair " + std::to_string(index + 1), "name");
-    if (name.empty() || name.front() == '.' || name.find('/') != std::string::npos ||
-        name.find('\0') != std::string::npos) {
+    const bool control = std::any_of(name.begin(), name.end(), [](char c) {
+        return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    });
+    if (name.empty() || name.front() == '.' || name.find('/') != std::string::npos || control) {
         fail(file,
-             "a pair's name must be a plain file name (no '/', not starting with '.'), "
-             "got \"" +
+             "a pair's name must be a plain file name (no '/', not starting with '.', no "
+             "control character), got \"" +
                  name + "\"");
     }
     return name;

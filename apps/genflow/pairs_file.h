@@ -29,8 +29,8 @@ struct EvalPair {
 /// order (all of them when it is empty).
 /// \throws IoError "<file>: <problem>" for a file that cannot be read, is not such an array, has
 ///         a field of the wrong kind, a name that is not a plain file name (it names outputs:
-///         no '/', not starting with '.') or a name twice; "<file>: no pair named ..." for a
-///         name of `only` the file lacks.
+///         no '/', not starting with '.', no control character) or a name twice; "<file>: no pair
+///         named ..." for a name of `only` the file lacks.
 [[nodiscard]] std::vector<EvalPair> read_pairs_file(const std::filesystem::path& file,
                                                     const std::filesystem::path& base,
                                                     const std::vector<std::string>& only = {});

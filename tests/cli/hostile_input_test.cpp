@@ -51,6 +51,7 @@ protected:
         std::filesystem::create_directory(directory / "adir.ply");
         write_pairs("pairs.json", {pair("limb")});
         write_pairs("up.json", {pair("../x")});
+        write_pairs("escape.json", {pair("\x1b[2Jlimb")});
         write_pairs("twice.json", {pair("limb"), pair("limb")});
     }
 
@@ -128,6 +129,7 @@ TEST_F(HostileInput, EveryRefusalIsOneLineWithItsExitCodeAndChangesNoFile) {
         {"eval pairs.json --pairs nosuch", 2, "pairs.json: no pair named \"nosuch\""},
         {"eval twice.json", 2, "twice.json: two pairs are named \"limb\""},
         {"eval up.json --output-dir out", 2, "up.json: a pair's name must be a plain file name"},
+        {"eval escape.json", 2, "got \"\\x1b[2Jlimb\""},
         // Outputs that cannot be written, found before any work.
         {"smooth s.ply nodir/o.ply", 1, "nodir/o.ply: cannot be written: the directory"},
         {"smooth s.ply adir.ply", 1, "adir.ply: is a directory"},
