@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "genflow/exceptions.h"
+#include "genflow/io/atomic_file.h"
+#include "genflow/io/mesh_format.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/read_points.h"
 #include "genflow/spatial/point_cloud_surface.h"
@@ -61,6 +63,14 @@ LoadedMesh load_target(const std::filesystem::path& path) {
     }
     check_loaded(loaded);
     return loaded;
+}
+
+void check_mesh_output(const std::string& path) {
+    const auto format = mesh_format_from_extension(path);
+    if (!format || *format == MeshFormat::Stl) {
+        throw IoError(path + ": cannot write this format (expected .obj, .ply or .off)");
+    }
+    check_output_path(path);
 }
 
 std::string printable(std::string_view text) {

@@ -53,6 +53,10 @@ void print_warnings(const LoadedMesh& loaded);
 /// "frame_00042.ply": the name of animation frame `step` in a --frames directory.
 std::string frame_name(int step);
 
+/// Checks a mesh output before any work: a format genflow writes (IoError "<path>: cannot write
+/// this format ...") and a place it can be written (check_output_path()).
+void check_mesh_output(const std::string& path);
+
 /// Creates `directory` (and its parents) for --frames, --output-dir and the like; throws
 /// OutputError naming it on failure.
 void create_output_directory(const std::filesystem::path& directory);

@@ -5,8 +5,13 @@
 #include <iostream>
 #include <memory>
 
+#include "cli_support.h"
 #include "commands.h"
 #include "genflow/energies/pseudo_hausdorff_energy.h"
+#include "genflow/io/atomic_file.h"
+#include "genflow/io/color_map.h"
+#include "genflow/io/write_mesh.h"
+#include "genflow/matching/correspondence.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/surface_distance.h"
 #include "mesh_summary.h"
@@ -20,9 +25,46 @@ struct DistanceOptions {
     std::string a;
     std::string b;
     double alpha = 8;
-    double epsilon = 0;  // 0: the mean edge length of B
+    double epsilon = 0;   // 0: the mean edge length of B
+    std::string colored;  // where A goes with its distance to B per vertex; empty: nowhere
+    double scale = 0;     // the colour scale's top; 0: the Hausdorff distance A → B
     bool json = false;
 };
+
+// The colour scale of --colored: [0, top].
+struct ColorScale {
+    double top = 0;
+    const char* meaning = "";
+};
+
+// A with each vertex's distance to the surface of B: a "distance" property and its colour on
+// viridis over `scale`.
+void write_colored(const std::string& path, const TriangleMesh& a, const TriangleMesh& b,
+                   const ColorScale& scale) {
+    const std::vector<SurfacePoint> nearest = closest_points(a.V, b);
+    Eigen::VectorXd distance(a.V.rows());
+    for (Eigen::Index i = 0; i < distance.size(); ++i) {
+        distance[i] = nearest[static_cast<std::size_t>(i)].distance;
+    }
+    VertexAttributes attributes{viridis_colors(distance, 0, scale.top), {{"distance", distance}}};
+    std::vector<std::string> warnings;
+    write_mesh(path, a, attributes, {}, &warnings);
+    for (const std::string& warning : warnings) {
+        std::fprintf(stderr, "warning: %s\n", printable(warning).c_str());
+    }
+}
+
+// The top of the colour scale: --scale, else the Hausdorff distance A → B (the largest of the
+// distances coloured), else, for A on B, the bounding-box diagonal.
+ColorScale color_scale(const DistanceOptions& options, const SurfaceDistances& d, double diagonal) {
+    if (options.scale > 0) {
+        return {options.scale, "--scale"};
+    }
+    if (d.a_to_b.hausdorff > 0) {
+        return {d.a_to_b.hausdorff, "the Hausdorff distance A -> B"};
+    }
+    return {diagonal, "the bounding-box diagonal (A lies on B)"};
+}
 
 nlohmann::json one_sided_json(const OneSidedDistance& d) {
     return {{"hausdorff", d.hausdorff},
@@ -35,6 +77,9 @@ nlohmann::json one_sided_json(const OneSidedDistance& d) {
 }
 
 void run_distance(const DistanceOptions& options) {
+    if (!options.colored.empty()) {
+        check_mesh_output(options.colored);
+    }
     const LoadedMesh a = load_mesh(options.a);
     const LoadedMesh b = load_mesh(options.b);
     if (!options.json) {
@@ -46,8 +91,12 @@ void run_distance(const DistanceOptions& options) {
     const PseudoHausdorffEnergy pseudo(b.mesh, {.alpha = options.alpha, .epsilon = epsilon});
     const double d_H = pseudo.value(a.mesh);
     const double diagonal = std::max(bounding_box_diagonal(a.mesh), bounding_box_diagonal(b.mesh));
+    const ColorScale scale = color_scale(options, d, diagonal);
+    if (!options.colored.empty()) {
+        write_colored(options.colored, a.mesh, b.mesh, scale);
+    }
     if (options.json) {
-        const nlohmann::json summary = {
+        nlohmann::json summary = {
             {"a", options.a},
             {"b", options.b},
             {"hausdorff", d.hausdorff},
@@ -59,6 +108,12 @@ void run_distance(const DistanceOptions& options) {
             {"bbox_diagonal", diagonal},
             {"pseudo_hausdorff", {{"value", d_H}, {"alpha", options.alpha}, {"epsilon", epsilon}}},
         };
+        if (!options.colored.empty()) {
+            summary["colored"] = {{"file", options.colored},
+                                  {"property", "distance"},
+                                  {"color_map", "viridis"},
+                                  {"scale", {0.0, scale.top}}};
+        }
         std::cout << summary.dump(2) << '\n';
         return;
     }
@@ -72,6 +127,12 @@ void run_distance(const DistanceOptions& options) {
                 d.hausdorff, 100 * d.hausdorff / diagonal, d.mean, d.rms);
     std::printf("pseudo-Hausdorff d_H (alpha %g, epsilon %.6g): %.6g\n", options.alpha, epsilon,
                 d_H);
+    if (!options.colored.empty()) {
+        std::printf(
+            "%s: A with its distance to B per vertex (property \"distance\"), coloured on "
+            "viridis from 0 (dark purple) to %.6g (yellow; %s)\n",
+            printable(options.colored).c_str(), scale.top, scale.meaning);
+    }
 }
 
 }  // namespace
@@ -90,6 +151,14 @@ void register_distance_command(CLI::App& app) {
     command
         ->add_option("--eps", options->epsilon,
                      "Its ε, a length (default: mean edge length of the second mesh)")
+        ->check(positive_length());
+    command->add_option("--colored", options->colored,
+                        "Write A with its distance to B per vertex: a \"distance\" property (PLY) "
+                        "and vertex colours on viridis (.ply, .obj, .off)");
+    command
+        ->add_option("--scale", options->scale,
+                     "The distance coloured yellow (default: the Hausdorff distance A -> B), to "
+                     "put several results on one scale")
         ->check(positive_length());
     command->add_flag("--json", options->json, "Print one JSON object instead of text");
     command->callback([options] { run_distance(*options); });

@@ -39,13 +39,6 @@ struct MatchCommandOptions {
     bool quiet = false;
 };
 
-void require_writable_format(const std::string& path) {
-    const auto format = mesh_format_from_extension(path);
-    if (!format || *format == MeshFormat::Stl) {
-        throw IoError(path + ": cannot write this format (expected .obj, .ply or .off)");
-    }
-}
-
 // The priors deform the template as a surface, so match() matches meshes as they come as
 // repair_surface() makes them: say what it did.
 void print_repairs(const std::string& path, const std::string& repairs) {
@@ -71,7 +64,7 @@ void print_point_cloud(const LoadedMesh& target) {
 }
 
 void run_match(const MatchCommandOptions& options) {
-    require_writable_format(options.output);
+    check_mesh_output(options.output);
     // Every output checked before any work, so that a typo costs nothing.
     for (const std::string& output : {options.output, options.correspondence, options.summary}) {
         if (!output.empty()) {

@@ -54,12 +54,7 @@ std::string signed_percent(double value) {
 }
 
 void run_smooth(SmoothCommandOptions options) {
-    // Refuse an unwritable format before spending time on the flow.
-    const auto format = mesh_format_from_extension(options.output);
-    if (!format || *format == MeshFormat::Stl) {
-        throw IoError(options.output + ": cannot write this format (expected .obj, .ply or .off)");
-    }
-    check_output_path(options.output);
+    check_mesh_output(options.output);
     const LoadedMesh loaded = load_mesh(options.input);
     if (!options.json) {
         print_warnings(loaded);

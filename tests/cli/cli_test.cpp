@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -167,6 +168,54 @@ TEST(Cli, DistanceBetweenParallelSquares) {
     const auto bad = run_genflow("distance " + quoted(directory / "a.ply") + " " +
                                  quoted(directory / "none.ply"));
     EXPECT_EQ(bad.exit_code, 2);
+}
+
+// A unit sphere against one moved by 0.3 along x: a vertex p of A is ||p − c| − 1| from B (up
+// to B's faceting), 0 where the spheres cross and most at the far ends. --colored writes that
+// per vertex beside its colour on viridis, dark at 0 and yellow at the top of the scale.
+TEST(Cli, DistanceColoursTheFirstMeshByItsDistanceToTheSecond) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh a = make_icosphere(2);
+    TriangleMesh b = make_icosphere(5);
+    b.V.col(0).array() += 0.3;
+    write_mesh(directory / "a.ply", a);
+    write_mesh(directory / "b.ply", b);
+    const auto result =
+        run_genflow("distance " + quoted(directory / "a.ply") + " " + quoted(directory / "b.ply") +
+                    " --json --colored " + quoted(directory / "colored.ply"));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto json = nlohmann::json::parse(result.out);
+    const double top = json["colored"]["scale"][1].get<double>();
+    EXPECT_DOUBLE_EQ(top, json["a_to_b"]["hausdorff"].get<double>());
+    // The binary rows: x, y, z, distance (doubles), red, green, blue (bytes).
+    const std::string bytes = test::read_text(directory / "colored.ply");
+    const std::size_t body = bytes.find("end_header\n") + 11;
+    ASSERT_NE(bytes.find("property double distance\nproperty uchar red\n"), std::string::npos);
+    double largest = 0;
+    for (Eigen::Index i = 0; i < a.V.rows(); ++i) {
+        const char* row = bytes.data() + body + 35 * i;
+        double distance = 0;
+        std::memcpy(&distance, row + 24, sizeof distance);
+        const Eigen::Vector3d p = a.V.row(i).transpose();
+        const double expected = std::abs((p - Eigen::Vector3d(0.3, 0, 0)).norm() - 1);
+        ASSERT_NEAR(distance, expected, 2e-3) << i;
+        largest = std::max(largest, distance);
+        const auto red = static_cast<unsigned char>(row[32]);
+        const auto blue = static_cast<unsigned char>(row[34]);
+        if (distance < 0.02 * top) {  // dark purple: more blue than red, little green
+            EXPECT_LT(red, 80);
+            EXPECT_GT(blue, 80);
+        }
+        if (distance > 0.98 * top) {  // yellow: red and green high, blue low
+            EXPECT_GT(red, 240);
+            EXPECT_LT(blue, 50);
+        }
+    }
+    // The farthest vertex is A's far end, 0.3; the Hausdorff distance over A's faces is a
+    // little more (the flat faces there lie inside A's sphere).
+    EXPECT_NEAR(largest, 0.3, 1e-9);
+    EXPECT_GE(top, largest);
+    EXPECT_LT(top, 1.05 * largest);
 }
 
 TEST(Cli, DemoMatchesTheGeneratedPairAndWritesEverything) {

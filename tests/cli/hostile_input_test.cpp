@@ -137,6 +137,9 @@ TEST_F(HostileInput, EveryRefusalIsOneLineWithItsExitCodeAndChangesNoFile) {
         {"match limb.ply limb.ply -o p.ply --summary nodir/s.json", 1,
          "s.json: cannot be written: the directory"},
         {"eval pairs.json --output-dir p.ply/sub", 1, "cannot create directory"},
+        {"distance s.ply s.ply --colored nodir/c.ply", 1,
+         "c.ply: cannot be written: the directory"},
+        {"distance s.ply s.ply --colored c.stl", 2, "c.stl: cannot write this format"},
     };
     const auto before = contents();
     for (const Refusal& refusal : refusals) {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "genflow/exceptions.h"
+#include "genflow/io/read_file.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/mesh/primitives.h"
 #include "support/test_meshes.h"
@@ -88,6 +89,53 @@ TEST(WriteMesh, RefusesNonFiniteCoordinatesAndWritesNothing) {
         for (const char* name : {"out.ply", "out.obj", "out.off"}) {
             EXPECT_THROW(write_mesh(directory / name, mesh), InvalidInput) << name;
         }
+    }
+    EXPECT_TRUE(std::filesystem::is_empty(directory.path()));
+}
+
+// Colours and named values are written where the format holds them, and what genflow writes
+// it reads back: the same positions and faces in every format.
+TEST(WriteMesh, WritesVertexColoursAndValuesThatItReadsBack) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh mesh = make_icosphere(1);
+    VertexAttributes attributes;
+    attributes.colors = VertexColors::Zero(mesh.V.rows(), 3);
+    attributes.colors.col(0).setConstant(255);
+    attributes.colors(0, 1) = 7;
+    attributes.scalars.emplace_back("distance", mesh.V.col(0).array().abs());
+    for (const char* name : {"out.ply", "ascii.ply", "out.obj", "out.off"}) {
+        std::vector<std::string> warnings;
+        const WriteMeshOptions options{.ply_encoding = std::string(name) == "ascii.ply"
+                                                           ? PlyEncoding::Ascii
+                                                           : PlyEncoding::BinaryLittleEndian};
+        write_mesh(directory / name, mesh, attributes, options, &warnings);
+        const TriangleMesh back = read_mesh(directory / name);
+        EXPECT_EQ(back.V, mesh.V) << name;
+        EXPECT_EQ(back.F, mesh.F) << name;
+        EXPECT_EQ(warnings.size(), std::string(name).ends_with(".ply") ? 0U : 1U) << name;
+    }
+    const std::string ascii = read_file(directory / "ascii.ply");
+    EXPECT_NE(ascii.find("property double distance\nproperty uchar red\n"), std::string::npos);
+    // Vertex 0's row ends with its colour.
+    const std::string first_row = ascii.substr(ascii.find("end_header\n") + 11);
+    EXPECT_NE(first_row.substr(0, first_row.find('\n')).find(" 255 7 0"), std::string::npos)
+        << first_row.substr(0, first_row.find('\n'));
+    EXPECT_NE(read_file(directory / "out.off").find("COFF\n"), std::string::npos);
+    EXPECT_NE(read_file(directory / "out.obj").find(" 1 0.027450980392156862 0\n"),
+              std::string::npos);
+}
+
+TEST(WriteMesh, RefusesAttributesThatDoNotFitTheMesh) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh mesh = make_icosphere(0);
+    VertexAttributes short_colors;
+    short_colors.colors = VertexColors::Zero(3, 3);
+    VertexAttributes bad_name;
+    bad_name.scalars.emplace_back("two words", Eigen::VectorXd::Zero(mesh.V.rows()));
+    VertexAttributes short_values;
+    short_values.scalars.emplace_back("d", Eigen::VectorXd::Zero(2));
+    for (const VertexAttributes* attributes : {&short_colors, &bad_name, &short_values}) {
+        EXPECT_THROW(write_mesh(directory / "out.ply", mesh, *attributes), InvalidInput);
     }
     EXPECT_TRUE(std::filesystem::is_empty(directory.path()));
 }

@@ -2,7 +2,10 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
+#include "genflow/io/vertex_attributes.h"
 #include "genflow/mesh.h"
 
 namespace genflow {
@@ -35,5 +38,16 @@ struct WriteMeshOptions {
 ///                      ..."; the file would be unreadable).
 void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
                 const WriteMeshOptions& options = {});
+
+/// Writes `mesh` with per-vertex `attributes`: PLY keeps all of them (each scalar a vertex
+/// property in the coordinates' type, colours as uchar red, green, blue); OBJ keeps colours
+/// ("v x y z r g b", 0–1) and OFF too (COFF, 0–255). Scalars a format cannot hold are left out
+/// with a warning in `warnings`, if given.
+/// \throws as write_mesh() above, and InvalidInput for colours or scalars that do not have a
+///         row per vertex, a non-finite scalar, or a scalar name with a space or one of x, y,
+///         z, red, green, blue.
+void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
+                const VertexAttributes& attributes, const WriteMeshOptions& options = {},
+                std::vector<std::string>* warnings = nullptr);
 
 }  // namespace genflow
