@@ -32,6 +32,7 @@ struct MatchCommandOptions {
     std::string correspondence;
     std::string frames;
     std::string summary;
+    std::string colored;
     std::string ground_truth;
     std::string landmarks;
     MatchFlags flags;
@@ -65,6 +66,9 @@ void print_point_cloud(const LoadedMesh& target) {
 
 void run_match(const MatchCommandOptions& options) {
     check_mesh_output(options.output);
+    if (!options.colored.empty()) {
+        check_mesh_output(options.colored);
+    }
     // Every output checked before any work, so that a typo costs nothing.
     for (const std::string& output : {options.output, options.correspondence, options.summary}) {
         if (!output.empty()) {
@@ -104,6 +108,9 @@ void run_match(const MatchCommandOptions& options) {
     }
     if (!options.summary.empty()) {
         job.summary = options.summary;
+    }
+    if (!options.colored.empty()) {
+        job.colored = options.colored;
     }
     job.options = resolved(options.flags, !options.parts.empty());
     const std::string prior = to_string(job.options.prior);
@@ -158,7 +165,16 @@ void run_match(const MatchCommandOptions& options) {
         summary["converged"].get<bool>() ? "converged" : "not converged",
         summary["hausdorff"].get<double>(), 100 * summary["hausdorff_over_diagonal"].get<double>(),
         summary["mean_distance"].get<double>(),
-        100 * summary["mean_distance_over_diagonal"].get<double>(), options.output.c_str());
+        100 * summary["mean_distance_over_diagonal"].get<double>(),
+        printable(options.output).c_str());
+    if (summary.contains("colored")) {
+        const nlohmann::json& colored = summary["colored"];
+        std::printf(
+            "%s: coloured by its %s per vertex on viridis, from 0 (dark purple) to %.4g "
+            "(yellow)\n",
+            printable(options.colored).c_str(), colored["property"].get<std::string>().c_str(),
+            colored["scale"][1].get<double>());
+    }
     if (summary["second_opinion"].get<bool>()) {
         std::printf(
             "the second opinion, matched from an intrinsic start (the shapes' extremities), "
@@ -225,6 +241,9 @@ void register_match_command(CLI::App& app) {
                         "Write every flow step as frame_NNNNN.ply into this directory "
                         "(coarse levels have their own vertex counts)");
     command->add_option("--summary", options->summary, "Write the JSON summary to this file");
+    command->add_option("--colored", options->colored,
+                        "Write the deformed template coloured per vertex on viridis by its error "
+                        "(with --ground-truth) or its distance to the target (.ply, .obj, .off)");
     command->add_option(
         "--ground-truth", options->ground_truth,
         "The target's surface sampled as the template (same vertex count and order): report the "

@@ -6,6 +6,7 @@
 #include "cli_support.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
+#include "genflow/io/color_map.h"
 #include "genflow/io/write_correspondences.h"
 #include "genflow/io/write_mesh.h"
 #include "genflow/matching/correspondence.h"
@@ -15,6 +16,38 @@
 #include "progress_bar.h"
 
 namespace genflow::cli {
+
+namespace {
+
+// The deformed template's values per vertex, written with it: its distance to the target's
+// surface, and with a ground truth its distance from where the vertex belongs.
+VertexAttributes vertex_values(const MatchJob& job, const TriangleMesh& deformed) {
+    const std::vector<SurfacePoint> nearest = closest_points(deformed.V, job.target);
+    Eigen::VectorXd distance(deformed.V.rows());
+    for (Eigen::Index i = 0; i < distance.size(); ++i) {
+        distance[i] = nearest[static_cast<std::size_t>(i)].distance;
+    }
+    VertexAttributes values;
+    values.scalars.emplace_back("distance", distance);
+    if (job.ground_truth) {
+        values.scalars.emplace_back("error", (deformed.V - *job.ground_truth).rowwise().norm());
+    }
+    return values;
+}
+
+// The colours of --colored: the last of `values` (the error where there is one) on viridis,
+// from 0 to its largest value (or the target's diagonal if that is 0); the scale goes in the
+// summary.
+VertexAttributes colored_by_last(VertexAttributes values, double diagonal,
+                                 nlohmann::json& summary) {
+    const auto& [name, field] = values.scalars.back();
+    const double top = field.maxCoeff() > 0 ? field.maxCoeff() : diagonal;
+    values.colors = viridis_colors(field, 0, top);
+    summary["colored"] = {{"property", name}, {"color_map", "viridis"}, {"scale", {0.0, top}}};
+    return values;
+}
+
+}  // namespace
 
 nlohmann::json run_match_job(MatchJob job) {
     int frame = 0;
@@ -97,7 +130,12 @@ nlohmann::json run_match_job(MatchJob job) {
 
     // All or none: a failure at the last file leaves the earlier ones as they were.
     OutputTransaction outputs;
-    write_mesh(job.output, result.deformed);
+    const VertexAttributes values = vertex_values(job, result.deformed);
+    write_mesh(job.output, result.deformed, values);
+    if (job.colored) {
+        write_mesh(*job.colored, result.deformed, colored_by_last(values, diagonal, summary));
+        summary["colored"]["file"] = job.colored->string();
+    }
     if (job.correspondence) {
         write_correspondences(*job.correspondence, match_correspondence(result, job.target));
         summary["correspondence"] = job.correspondence->string();

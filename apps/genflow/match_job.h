@@ -23,6 +23,9 @@ struct MatchJob {
     std::optional<std::filesystem::path> correspondence;  ///< per-vertex closest target points
     std::optional<std::filesystem::path> frames;          ///< animation frames
     std::optional<std::filesystem::path> summary;         ///< the JSON summary, as a file
+    /// The deformed template coloured by its error (with a ground truth) or its distance to the
+    /// target, per vertex.
+    std::optional<std::filesystem::path> colored;
     /// Known positions of the template's vertices on the target (a generated pair): the
     /// summary then reports the correspondence error.
     std::optional<Eigen::MatrixX3d> ground_truth;
@@ -31,7 +34,9 @@ struct MatchJob {
 };
 
 /// Runs the job and returns its summary (also written to job.summary when set). Outputs are
-/// written atomically, only after the match succeeded.
+/// written atomically, only after the match succeeded. A PLY output holds, per vertex, the
+/// deformed template's distance to the target ("distance") and, with a ground truth, its
+/// correspondence error ("error"), both as lengths.
 nlohmann::json run_match_job(MatchJob job);
 
 }  // namespace genflow::cli

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -39,13 +40,13 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     // The template moved as the target was: where each of its vertices belongs.
     write_mesh(directory / "truth.ply",
                TriangleMesh{motion.apply(template_mesh.V), template_mesh.F});
-    const auto result =
-        run_genflow("match " + quoted(directory / "template.ply") + " " +
-                    quoted(directory / "target.obj") + " -o " + quoted(directory / "out.ply") +
-                    " --prior rigid --iterations 60 --correspondence " +
-                    quoted(directory / "corr.txt") + " --frames " + quoted(directory / "frames") +
-                    " --summary " + quoted(directory / "summary.json") + " --ground-truth " +
-                    quoted(directory / "truth.ply") + " --json");
+    const auto result = run_genflow(
+        "match " + quoted(directory / "template.ply") + " " + quoted(directory / "target.obj") +
+        " -o " + quoted(directory / "out.ply") +
+        " --prior rigid --iterations 60 --correspondence " + quoted(directory / "corr.txt") +
+        " --frames " + quoted(directory / "frames") + " --summary " +
+        quoted(directory / "summary.json") + " --ground-truth " + quoted(directory / "truth.ply") +
+        " --colored " + quoted(directory / "colored.ply") + " --json");
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto json = nlohmann::json::parse(result.out);
     EXPECT_EQ(json["prior"], "rigid");
@@ -75,6 +76,31 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(lines, template_mesh.V.rows());
     EXPECT_TRUE(std::filesystem::exists(directory / "frames" / "frame_00000.ply"));
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(directory / "summary.json")), json);
+    // The output's rows: x, y, z, then each vertex's distance to the target and its error.
+    const std::string bytes = read_file(directory / "out.ply");
+    ASSERT_NE(bytes.find("property double distance\nproperty double error\nelement face"),
+              std::string::npos);
+    const char* rows = bytes.data() + bytes.find("end_header\n") + 11;
+    const TriangleMesh truth = read_mesh(directory / "truth.ply");
+    double error_sum = 0;
+    double largest_error = 0;
+    for (Eigen::Index i = 0; i < out.V.rows(); ++i) {
+        double values[5];
+        std::memcpy(values, rows + 40 * i, sizeof values);
+        EXPECT_EQ(values[0], out.V(i, 0));
+        EXPECT_LE(values[3], json["hausdorff"].get<double>());
+        EXPECT_DOUBLE_EQ(values[4], (out.V.row(i) - truth.V.row(i)).norm());
+        error_sum += values[4];
+        largest_error = std::max(largest_error, values[4]);
+    }
+    const double diagonal = (truth.V.colwise().maxCoeff() - truth.V.colwise().minCoeff()).norm();
+    EXPECT_NEAR(error_sum / static_cast<double>(out.V.rows()) / diagonal,
+                json["correspondence_error_over_diagonal"]["mean"].get<double>(), 1e-12);
+    // --colored: the same mesh, coloured by the error from 0 to its largest.
+    EXPECT_EQ(json["colored"]["property"], "error");
+    EXPECT_DOUBLE_EQ(json["colored"]["scale"][1].get<double>(), largest_error);
+    EXPECT_EQ(read_mesh(directory / "colored.ply").V, out.V);
+    EXPECT_NE(read_file(directory / "colored.ply").find("property uchar red"), std::string::npos);
 }
 
 // The counterparts' stage runs by default (and says how many vertices it moved from the closest
