@@ -65,6 +65,23 @@ LoadedMesh load_target(const std::filesystem::path& path) {
     return loaded;
 }
 
+std::function<void(const MatchStage&)> stage_errors(const Eigen::MatrixX3d& truth, double diagonal,
+                                                    nlohmann::json& stages) {
+    return [&truth, diagonal, &stages](const MatchStage& stage) {
+        const Eigen::MatrixX3d& V = stage.mesh->V;
+        double sum = 0;
+        for (Eigen::Index v = 0; v < V.rows(); ++v) {
+            sum += (V.row(v) - truth.row((*stage.template_vertex)[static_cast<std::size_t>(v)]))
+                       .norm();
+        }
+        const double mean = V.rows() > 0 ? sum / static_cast<double>(V.rows()) : 0;
+        stages.push_back({{"level", stage.level},
+                          {"stage", std::string(stage.stage)},
+                          {"vertices", V.rows()},
+                          {"mean", mean / diagonal}});
+    };
+}
+
 void check_mesh_output(const std::string& path) {
     const auto format = mesh_format_from_extension(path);
     if (!format || *format == MeshFormat::Stl) {

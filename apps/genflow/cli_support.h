@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -52,6 +53,12 @@ void print_warnings(const LoadedMesh& loaded);
 
 /// "frame_00042.ply": the name of animation frame `step` in a --frames directory.
 std::string frame_name(int step);
+
+/// A MatchOptions::stages callback that appends to `stages`, per stage of each level, its
+/// "level", "stage", "vertices" and "mean": the mean distance of the level's vertices from where
+/// `truth` (the template's vertices, placed) has them, over `diagonal`.
+std::function<void(const MatchStage&)> stage_errors(const Eigen::MatrixX3d& truth, double diagonal,
+                                                    nlohmann::json& stages);
 
 /// Checks a mesh output before any work: a format genflow writes (IoError "<path>: cannot write
 /// this format ...") and a place it can be written (check_output_path()).

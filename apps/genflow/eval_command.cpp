@@ -49,17 +49,6 @@ TriangleMesh target_of(const EvalPair& pair, const TriangleMesh& truth) {
     return coarsen_to_share(truth, pair.target_simplified).mesh;
 }
 
-// The mean distance of a stage's vertices from where the ground truth has them.
-double stage_error(const MatchStage& stage, const TriangleMesh& truth) {
-    const Eigen::MatrixX3d& V = stage.mesh->V;
-    double sum = 0;
-    for (Eigen::Index v = 0; v < V.rows(); ++v) {
-        sum +=
-            (V.row(v) - truth.V.row((*stage.template_vertex)[static_cast<std::size_t>(v)])).norm();
-    }
-    return V.rows() > 0 ? sum / static_cast<double>(V.rows()) : 0;
-}
-
 void run_eval(const EvalOptions& options) {
     const std::filesystem::path file(options.pairs);
     const std::filesystem::path base =
@@ -105,12 +94,7 @@ void run_eval(const EvalOptions& options) {
             match_options.parts = parts;
             nlohmann::json stages = nlohmann::json::array();
             if (options.stages) {
-                match_options.stages = [&](const MatchStage& stage) {
-                    stages.push_back({{"level", stage.level},
-                                      {"stage", std::string(stage.stage)},
-                                      {"vertices", stage.mesh->V.rows()},
-                                      {"mean", stage_error(stage, truth) / diagonal}});
-                };
+                match_options.stages = stage_errors(truth.V, diagonal, stages);
             }
             const MatchResult result = match(template_mesh, target, match_options);
             const CorrespondenceError error = correspondence_error(result.deformed.V, truth);

@@ -65,6 +65,15 @@ nlohmann::json run_match_job(MatchJob job) {
         }
         return true;
     };
+    // With a ground truth, the error after each stage of each level.
+    nlohmann::json stages = nlohmann::json::array();
+    const double truth_diagonal =
+        job.ground_truth
+            ? bounding_box_diagonal(TriangleMesh{*job.ground_truth, job.template_mesh.F})
+            : 0;
+    if (job.ground_truth) {
+        job.options.stages = stage_errors(*job.ground_truth, truth_diagonal, stages);
+    }
     const MatchResult result = match(job.template_mesh, job.target, job.options);
     bar.finish();
 
@@ -78,6 +87,7 @@ nlohmann::json run_match_job(MatchJob job) {
                           {"status", to_string(level.status)},
                           {"pseudo_hausdorff_start", level.energy_start},
                           {"pseudo_hausdorff_end", level.energy_end},
+                          {"pseudo_hausdorff_per_step", level.energy},
                           {"seconds", level.seconds}});
     }
     const Eigen::Matrix4d alignment = result.initial_alignment.matrix();
@@ -126,6 +136,7 @@ nlohmann::json run_match_job(MatchJob job) {
             }
         }
         summary["stranded_vertex_indices"] = stranded;
+        summary["stages"] = stages;
     }
 
     // All or none: a failure at the last file leaves the earlier ones as they were.

@@ -182,7 +182,7 @@ void LevelFlows::tell(int l, std::string_view stage, const TriangleMesh& mesh) c
 
 MatchLevel level_report(const Level& level, const FlowResult& flow, double seconds) {
     return MatchLevel{flow.mesh.V.rows(),  level.target.V.rows(), flow.steps, flow.status,
-                      flow.energy.front(), flow.energy.back(),    seconds};
+                      flow.energy.front(), flow.energy.back(),    seconds,    flow.energy};
 }
 
 }  // namespace genflow::detail

@@ -53,6 +53,16 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
     EXPECT_LT(json["hausdorff_over_diagonal"].get<double>(), 0.05);
     EXPECT_EQ(json["levels"].size(), 1u);
+    // The energy after each step of the level's kept flow, and with the ground truth the error
+    // after each stage.
+    const auto& trace = json["levels"][0]["pseudo_hausdorff_per_step"];
+    ASSERT_GE(trace.size(), 2u);
+    EXPECT_LE(trace.size(), json["levels"][0]["iterations"].get<std::size_t>() + 1);
+    EXPECT_EQ(trace.front(), json["levels"][0]["pseudo_hausdorff_start"]);
+    EXPECT_EQ(trace.back(), json["levels"][0]["pseudo_hausdorff_end"]);
+    ASSERT_FALSE(json["stages"].empty());
+    EXPECT_EQ(json["stages"].back()["level"], 0);
+    EXPECT_LT(json["stages"].back()["mean"].get<double>(), 0.02);
     EXPECT_EQ(json["turned_parts"], 0);  // the rigid prior has no refinement to turn back
     EXPECT_EQ(json["map_fits"], 0);      // nor to fit to the fine map
     EXPECT_GT(json["intrinsic_disagreement"].get<double>(), 0);

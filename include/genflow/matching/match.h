@@ -265,6 +265,9 @@ struct MatchLevel {
     double energy_start = 0;
     double energy_end = 0;
     double seconds = 0;  ///< pyramid, transfer and flow of this level
+    /// d_H (likewise) after each step of the flow whose result the level keeps, its start
+    /// first: energy_start … energy_end.
+    std::vector<double> energy;
 };
 
 /// The time one stage of match() took (MatchResult::stage_times).
