@@ -9,9 +9,9 @@
 
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
-#include "genflow/io/mesh_format.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/read_points.h"
+#include "genflow/io/write_mesh.h"
 #include "genflow/spatial/point_cloud_surface.h"
 #include "number_checks.h"
 
@@ -83,9 +83,9 @@ std::function<void(const MatchStage&)> stage_errors(const Eigen::MatrixX3d& trut
 }
 
 void check_mesh_output(const std::string& path) {
-    const auto format = mesh_format_from_extension(path);
-    if (!format || *format == MeshFormat::Stl) {
-        throw IoError(path + ": cannot write this format (expected .obj, .ply or .off)");
+    if (!is_writable_mesh_path(path)) {
+        throw IoError(path +
+                      ": cannot write this format (expected .obj, .ply, .off, .stl or .glb)");
     }
     check_output_path(path);
 }

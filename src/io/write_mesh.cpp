@@ -3,13 +3,18 @@
 
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
 #include "genflow/io/mesh_format.h"
+#include "io/glb_writer.h"
 #include "operators/triangle.h"
 
 namespace genflow {
@@ -174,6 +179,64 @@ std::string encode_ply(const TriangleMesh& mesh, const VertexAttributes& attribu
     return out;
 }
 
+// Binary STL: an 80-byte header, the count, and per face its unit normal and corners as floats.
+std::string encode_stl(const TriangleMesh& mesh) {
+    std::string out = "binary STL written by genflow";
+    out.resize(80, ' ');
+    append_little_endian(out, static_cast<std::uint32_t>(mesh.F.rows()));
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)).transpose();
+        const Eigen::Vector3d b = mesh.V.row(mesh.F(f, 1)).transpose();
+        const Eigen::Vector3d c = mesh.V.row(mesh.F(f, 2)).transpose();
+        const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();  // 0 if degenerate
+        for (const Eigen::Vector3d& point : {normal, a, b, c}) {
+            for (int k = 0; k < 3; ++k) {
+                append_little_endian(out,
+                                     std::isfinite(point[k]) ? static_cast<float>(point[k]) : 0.0F);
+            }
+        }
+        append_little_endian(out, std::uint16_t{0});
+    }
+    return out;
+}
+
+// The formats write_mesh() writes, by extension.
+enum class Written { Obj, Ply, Off, Stl, Glb };
+
+std::optional<Written> written_format(const std::filesystem::path& path) {
+    if (const auto format = mesh_format_from_extension(path)) {
+        switch (*format) {
+            case MeshFormat::Obj:
+                return Written::Obj;
+            case MeshFormat::Ply:
+                return Written::Ply;
+            case MeshFormat::Off:
+                return Written::Off;
+            case MeshFormat::Stl:
+                return Written::Stl;
+        }
+    }
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension == ".glb" ? std::optional(Written::Glb) : std::nullopt;
+}
+
+// What `format` leaves out of `attributes`, as a warning's words; empty if nothing.
+std::string left_out(Written format, const VertexAttributes& attributes) {
+    const bool colors = attributes.colors.rows() > 0;
+    const bool values = !attributes.scalars.empty();
+    if (format == Written::Stl && (colors || values)) {
+        return colors && values ? "vertex colours and values"
+               : colors         ? "vertex colours"
+                                : "vertex values";
+    }
+    if ((format == Written::Obj || format == Written::Off) && values) {
+        return "vertex values";
+    }
+    return "";
+}
+
 }  // namespace
 
 namespace {
@@ -212,13 +275,17 @@ void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
     write_mesh(path, mesh, VertexAttributes{}, options);
 }
 
+bool is_writable_mesh_path(const std::filesystem::path& path) {
+    return written_format(path).has_value();
+}
+
 void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
                 const VertexAttributes& attributes, const WriteMeshOptions& options,
                 std::vector<std::string>* warnings) {
-    const auto format = mesh_format_from_extension(path);
-    if (!format || *format == MeshFormat::Stl) {
+    const auto format = written_format(path);
+    if (!format) {
         throw IoError(path.string() + ": cannot write format '" + path.extension().string() +
-                      "' (expected .obj, .ply or .off)");
+                      "' (expected .obj, .ply, .off, .stl or .glb)");
     }
     if (mesh.F.size() > 0 && (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows())) {
         throw InvalidInput("write_mesh: face indices must lie in [0, " +
@@ -229,23 +296,27 @@ void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
         throw InvalidInput(path.string() + ": the mesh to write has non-finite coordinates");
     }
     check_attributes(path, mesh, attributes);
-    if (*format != MeshFormat::Ply && !attributes.scalars.empty() && warnings != nullptr) {
-        warnings->push_back(path.string() + ": " + path.extension().string() +
-                            " holds no vertex values (" + attributes.scalars.front().first +
-                            (attributes.scalars.size() > 1 ? ", ..." : "") +
-                            "); write .ply to keep them");
+    if (const std::string missing = left_out(*format, attributes);
+        !missing.empty() && warnings != nullptr) {
+        warnings->push_back(path.string() + ": " + path.extension().string() + " holds no " +
+                            missing + "; write .ply or .glb to keep them");
     }
     std::string bytes;
     switch (*format) {
-        case MeshFormat::Obj:
+        case Written::Obj:
             bytes = encode_obj(mesh, attributes);
             break;
-        case MeshFormat::Off:
+        case Written::Off:
             bytes = encode_off(mesh, attributes);
             break;
-        case MeshFormat::Ply:
-        case MeshFormat::Stl:
+        case Written::Ply:
             bytes = encode_ply(mesh, attributes, options);
+            break;
+        case Written::Stl:
+            bytes = encode_stl(mesh);
+            break;
+        case Written::Glb:
+            bytes = detail::encode_glb(mesh, attributes);
             break;
     }
     write_file_atomically(path, bytes);

@@ -139,7 +139,7 @@ TEST_F(HostileInput, EveryRefusalIsOneLineWithItsExitCodeAndChangesNoFile) {
         {"eval pairs.json --output-dir p.ply/sub", 1, "cannot create directory"},
         {"distance s.ply s.ply --colored nodir/c.ply", 1,
          "c.ply: cannot be written: the directory"},
-        {"distance s.ply s.ply --colored c.stl", 2, "c.stl: cannot write this format"},
+        {"distance s.ply s.ply --colored c.xyz", 2, "c.xyz: cannot write this format"},
     };
     const auto before = contents();
     for (const Refusal& refusal : refusals) {

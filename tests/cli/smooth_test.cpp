@@ -92,7 +92,7 @@ TEST(SmoothCli, BadArgumentsAndInputsAreRefusedWithoutOutput) {
         "smooth " + quoted(directory / "in.ply") + " " + quoted(directory / "out.ply") + " --dt -1",
         "smooth " + quoted(directory / "in.ply") + " " + quoted(directory / "out.ply") +
             " --volume-lambda 2",
-        "smooth " + quoted(directory / "in.ply") + " " + quoted(directory / "out.stl"),
+        "smooth " + quoted(directory / "in.ply") + " " + quoted(directory / "out.vtk"),
         "smooth " + quoted(directory / "nan.off") + " " + quoted(directory / "out.ply"),
         "smooth " + quoted(directory / "missing.ply") + " " + quoted(directory / "out.ply"),
     };
@@ -101,7 +101,7 @@ TEST(SmoothCli, BadArgumentsAndInputsAreRefusedWithoutOutput) {
         EXPECT_EQ(result.exit_code, 2) << arguments << ": " << result.err;
         EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
         EXPECT_FALSE(std::filesystem::exists(directory / "out.ply"));
-        EXPECT_FALSE(std::filesystem::exists(directory / "out.stl"));
+        EXPECT_FALSE(std::filesystem::exists(directory / "out.vtk"));
     }
 }
 

@@ -2,6 +2,7 @@
 #include "genflow/io/write_mesh.h"
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include <limits>
 
@@ -72,10 +73,9 @@ TEST(WriteMesh, ParentThatIsAFileGivesIoErrorWithThePath) {
     }
 }
 
-TEST(WriteMesh, RejectsUnknownOrStlExtensions) {
+TEST(WriteMesh, RejectsUnknownExtensions) {
     const test::TemporaryDirectory directory;
     EXPECT_THROW(write_mesh(directory / "out.xyz", make_icosphere(0)), IoError);
-    EXPECT_THROW(write_mesh(directory / "out.stl", make_icosphere(0)), IoError);
     EXPECT_TRUE(std::filesystem::is_empty(directory.path()));
 }
 
@@ -123,6 +123,79 @@ TEST(WriteMesh, WritesVertexColoursAndValuesThatItReadsBack) {
     EXPECT_NE(read_file(directory / "out.off").find("COFF\n"), std::string::npos);
     EXPECT_NE(read_file(directory / "out.obj").find(" 1 0.027450980392156862 0\n"),
               std::string::npos);
+}
+
+// Binary STL: what the STL reader reads back is the mesh, to float precision.
+TEST(WriteMesh, WritesBinaryStl) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh mesh = make_icosphere(2);
+    VertexAttributes attributes;
+    attributes.scalars.emplace_back("d", Eigen::VectorXd::Zero(mesh.V.rows()));
+    std::vector<std::string> warnings;
+    write_mesh(directory / "out.stl", mesh, attributes, {}, &warnings);
+    EXPECT_EQ(warnings.size(), 1U);  // the values are left out
+    EXPECT_EQ(std::filesystem::file_size(directory / "out.stl"), 84 + 50 * mesh.F.rows());
+    const TriangleMesh back = read_mesh(directory / "out.stl");
+    ASSERT_EQ(back.V.rows(), mesh.V.rows());  // corners welded back into vertices
+    ASSERT_EQ(back.F.rows(), mesh.F.rows());
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_LT((back.V.row(back.F(f, c)) - mesh.V.row(mesh.F(f, c))).norm(), 1e-7);
+        }
+    }
+}
+
+// Binary glTF, read back by TinyGLTF as a viewer would: the positions and faces, a unit normal
+// per vertex, the colours (linear, as glTF has them) and the values as "_NAME" attributes.
+TEST(WriteMesh, WritesBinaryGltfThatTinyGltfReadsBack) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh mesh = make_icosphere(1);
+    VertexAttributes attributes;
+    attributes.colors = VertexColors::Constant(mesh.V.rows(), 3, 255);
+    attributes.colors(2, 0) = 0;
+    attributes.colors(2, 1) = 188;  // sRGB 188 is linear 0.5029
+    attributes.scalars.emplace_back("distance", Eigen::VectorXd::LinSpaced(mesh.V.rows(), 0, 1));
+    write_mesh(directory / "out.GLB", mesh, attributes);
+    const std::string bytes = read_file(directory / "out.GLB");
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string error;
+    std::string warning;
+    ASSERT_TRUE(loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                            reinterpret_cast<const unsigned char*>(bytes.data()),
+                                            static_cast<unsigned>(bytes.size())))
+        << error;
+    ASSERT_EQ(model.meshes.size(), 1U);
+    const tinygltf::Primitive& primitive = model.meshes[0].primitives.at(0);
+    const auto floats = [&](const char* attribute) {
+        const tinygltf::Accessor& accessor =
+            model.accessors.at(static_cast<std::size_t>(primitive.attributes.at(attribute)));
+        const tinygltf::BufferView& view =
+            model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
+        const auto* data = reinterpret_cast<const float*>(model.buffers.at(0).data.data() +
+                                                          view.byteOffset + accessor.byteOffset);
+        return std::vector<float>(data, data + view.byteLength / sizeof(float));
+    };
+    const std::vector<float> positions = floats("POSITION");
+    ASSERT_EQ(positions.size(), static_cast<std::size_t>(3 * mesh.V.rows()));
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_FLOAT_EQ(positions[static_cast<std::size_t>(3 * i + c)],
+                            static_cast<float>(mesh.V(i, c)));
+        }
+    }
+    const std::vector<float> normals = floats("NORMAL");
+    EXPECT_NEAR(normals[0] * normals[0] + normals[1] * normals[1] + normals[2] * normals[2], 1,
+                1e-6);
+    const std::vector<float> colors = floats("COLOR_0");
+    EXPECT_FLOAT_EQ(colors[6], 0);
+    EXPECT_NEAR(colors[7], 0.5029, 1e-4);
+    EXPECT_FLOAT_EQ(colors[8], 1);
+    EXPECT_FLOAT_EQ(floats("_DISTANCE").back(), 1);
+    const tinygltf::Accessor& indices =
+        model.accessors.at(static_cast<std::size_t>(primitive.indices));
+    EXPECT_EQ(indices.count, static_cast<std::size_t>(mesh.F.size()));
+    EXPECT_TRUE(model.materials.at(0).doubleSided);
 }
 
 TEST(WriteMesh, RefusesAttributesThatDoNotFitTheMesh) {

@@ -26,13 +26,15 @@ struct WriteMeshOptions {
     PlyPrecision ply_precision = PlyPrecision::Double;
 };
 
-/// Writes `mesh` to `path` as OBJ, PLY or OFF, chosen by the extension.
+/// Writes `mesh` to `path` as OBJ, PLY, OFF, STL (binary, float) or binary glTF (.glb: float
+/// positions, area-weighted vertex normals, a matte double-sided material, for web viewers and
+/// Blender), chosen by the extension.
 ///
 /// The write is atomic: the data goes to a temporary file in the same directory, which is
 /// renamed over `path` only once everything was written and flushed. A failure never leaves a
 /// partial file behind, and an existing file at `path` is kept unless the write succeeds.
 ///
-/// \throws IoError      "<path>: <problem>" if the extension is not .obj, .ply or .off, or the
+/// \throws IoError      "<path>: <problem>" if the extension is not one of these, or the
 ///                      file cannot be written.
 /// \throws InvalidInput if F holds an index outside V, or V a non-finite coordinate ("<path>:
 ///                      ..."; the file would be unreadable).
@@ -40,14 +42,18 @@ void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
                 const WriteMeshOptions& options = {});
 
 /// Writes `mesh` with per-vertex `attributes`: PLY keeps all of them (each scalar a vertex
-/// property in the coordinates' type, colours as uchar red, green, blue); OBJ keeps colours
-/// ("v x y z r g b", 0–1) and OFF too (COFF, 0–255). Scalars a format cannot hold are left out
-/// with a warning in `warnings`, if given.
+/// property in the coordinates' type, colours as uchar red, green, blue), glTF too (colours as
+/// COLOR_0, each scalar a float attribute "_NAME"); OBJ keeps colours ("v x y z r g b", 0–1)
+/// and OFF too (COFF, 0–255); STL keeps neither. What a format cannot hold is left out with a
+/// warning in `warnings`, if given.
 /// \throws as write_mesh() above, and InvalidInput for colours or scalars that do not have a
 ///         row per vertex, a non-finite scalar, or a scalar name with a space or one of x, y,
 ///         z, red, green, blue.
 void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
                 const VertexAttributes& attributes, const WriteMeshOptions& options = {},
                 std::vector<std::string>* warnings = nullptr);
+
+/// Whether write_mesh() writes the format `path`'s extension names (case-insensitive).
+[[nodiscard]] bool is_writable_mesh_path(const std::filesystem::path& path);
 
 }  // namespace genflow
