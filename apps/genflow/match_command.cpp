@@ -11,11 +11,11 @@
 #include "commands.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
-#include "genflow/io/mesh_format.h"
 #include "genflow/io/read_landmarks.h"
 #include "genflow/io/read_part_model.h"
 #include "match_flags.h"
 #include "match_job.h"
+#include "number_checks.h"
 
 namespace genflow::cli {
 
@@ -31,6 +31,7 @@ struct MatchCommandOptions {
     std::string parts_pose;
     std::string correspondence;
     std::string frames;
+    int frame_every = 1;
     std::string summary;
     std::string colored;
     std::string ground_truth;
@@ -105,6 +106,7 @@ void run_match(const MatchCommandOptions& options) {
     }
     if (!options.frames.empty()) {
         job.frames = options.frames;
+        job.frame_every = options.frame_every;
     }
     if (!options.summary.empty()) {
         job.summary = options.summary;
@@ -238,8 +240,11 @@ void register_match_command(CLI::App& app) {
                         "Write, per template vertex, the closest target face and barycentric "
                         "coordinates (text)");
     command->add_option("--frames", options->frames,
-                        "Write every flow step as frame_NNNNN.ply into this directory "
-                        "(coarse levels have their own vertex counts)");
+                        "Write the template as every flow step deformed it, at its own "
+                        "resolution (coarse levels' motion carried to it), as frame_NNNNN.ply "
+                        "into this directory: one animation");
+    command->add_option("--frame-every", options->frame_every, "Every k-th step only, for --frames")
+        ->check(positive_number());
     command->add_option("--summary", options->summary, "Write the JSON summary to this file");
     command->add_option("--colored", options->colored,
                         "Write the deformed template coloured per vertex on viridis by its error "

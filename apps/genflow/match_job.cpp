@@ -11,6 +11,8 @@
 #include "genflow/io/write_mesh.h"
 #include "genflow/matching/correspondence.h"
 #include "genflow/matching/correspondence_error.h"
+#include "genflow/matching/template_frames.h"
+#include "genflow/mesh/repair.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/surface_distance.h"
 #include "progress_bar.h"
@@ -51,16 +53,18 @@ VertexAttributes colored_by_last(VertexAttributes values, double diagonal,
 
 nlohmann::json run_match_job(MatchJob job) {
     int frame = 0;
+    std::optional<TemplateFrames> frames;
     if (job.frames) {
         create_output_directory(*job.frames);
+        frames.emplace(repair_surface(job.template_mesh).mesh);  // as match() flows it
     }
     ProgressBar bar("match", job.progress_bar);
     job.options.progress = [&](const MatchProgress& p) {
         bar.update(p.step, p.max_steps,
                    "level " + std::to_string(p.levels - p.level) + "/" + std::to_string(p.levels) +
                        ", d_H " + std::to_string(p.energy));
-        if (job.frames) {
-            write_mesh(*job.frames / frame_name(frame++), *p.mesh,
+        if (frames && (p.step % job.frame_every == 0 || p.step == p.max_steps)) {
+            write_mesh(*job.frames / frame_name(frame++), (*frames)(*p.mesh, *p.template_vertex),
                        {.ply_precision = PlyPrecision::Float});
         }
         return true;

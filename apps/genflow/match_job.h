@@ -21,8 +21,10 @@ struct MatchJob {
     bool target_normals = false;     ///< whether the point cloud came with normals
     std::filesystem::path output;    ///< the deformed template
     std::optional<std::filesystem::path> correspondence;  ///< per-vertex closest target points
-    std::optional<std::filesystem::path> frames;          ///< animation frames
-    std::optional<std::filesystem::path> summary;         ///< the JSON summary, as a file
+    /// Animation frames: the template at its own resolution after every frame_every-th step.
+    std::optional<std::filesystem::path> frames;
+    int frame_every = 1;
+    std::optional<std::filesystem::path> summary;  ///< the JSON summary, as a file
     /// The deformed template coloured by its error (with a ground truth) or its distance to the
     /// target, per vertex.
     std::optional<std::filesystem::path> colored;

@@ -10,7 +10,6 @@
 #include "commands.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
-#include "genflow/io/mesh_format.h"
 #include "genflow/io/write_mesh.h"
 #include "genflow/operators/area.h"
 #include "genflow/operators/volume.h"

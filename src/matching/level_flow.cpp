@@ -149,7 +149,8 @@ FlowResult LevelFlows::run_flow(int l, const TriangleMesh& moved, int iterations
     if (options_.progress && reports) {
         descent.progress = [this, l](const FlowProgress& p) {
             const bool go_on =
-                options_.progress({l, count(), p.step, p.max_steps, p.energy, p.mesh});
+                options_.progress({l, count(), p.step, p.max_steps, p.energy, p.mesh,
+                                   &pyramid_[static_cast<std::size_t>(l)].original_vertex});
             if (!go_on) {
                 cancelled_ = true;
             }

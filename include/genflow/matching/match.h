@@ -48,6 +48,10 @@ struct MatchProgress {
     int max_steps = 0;
     double energy = 0;                   ///< d_H after this step
     const TriangleMesh* mesh = nullptr;  ///< the deformed template (valid during the call)
+    /// Per vertex of `mesh`, the template's vertex it is (the levels are nested): a vertex of
+    /// the template as repair_surface() makes it, which is the input itself unless it needed a
+    /// repair (MatchResult::template_repairs).
+    const std::vector<Eigen::Index>* template_vertex = nullptr;
 };
 
 /// A level's deformed template after one stage of match()'s work, for diagnostics
