@@ -32,9 +32,31 @@ void check_loaded(LoadedMesh& loaded) {
 LoadedMesh load_mesh(const std::filesystem::path& path) {
     LoadedMesh loaded;
     loaded.path = path;
-    loaded.mesh = read_mesh(path, &loaded.read_warnings);
+    loaded.mesh = read_mesh(path, &loaded.read_warnings, &loaded.attributes);
     check_loaded(loaded);
     return loaded;
+}
+
+VertexAttributes carried_attributes(const LoadedMesh& loaded, bool quiet) {
+    VertexAttributes carried = loaded.attributes;
+    if (carried.normals.rows() > 0) {
+        carried.normals.resize(0, 3);
+        if (!quiet) {
+            std::cerr << "warning: " << printable(loaded.path.string())
+                      << ": its vertex normals are left out (they describe the surface before "
+                         "it moved)\n";
+        }
+    }
+    return carried;
+}
+
+void write_mesh_with(const std::filesystem::path& path, const TriangleMesh& mesh,
+                     const VertexAttributes& attributes, bool quiet) {
+    std::vector<std::string> warnings;
+    write_mesh(path, mesh, attributes, {}, &warnings);
+    for (const std::string& warning : quiet ? std::vector<std::string>{} : warnings) {
+        std::cerr << "warning: " << printable(warning) << '\n';
+    }
 }
 
 LoadedMesh load_target(const std::filesystem::path& path) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "genflow/io/vertex_attributes.h"
 #include "genflow/matching/match.h"
 #include "genflow/mesh.h"
 #include "genflow/mesh/validate.h"
@@ -34,6 +35,9 @@ struct LoadedMesh {
     /// Where the file held points only: how many; `mesh` is then point_cloud_surface()'s.
     Eigen::Index points = 0;
     bool normals = false;  ///< whether the point cloud came with its normals
+    /// What the file gives per vertex beside positions (a PLY's normals, colours and values, an
+    /// OBJ's colours).
+    VertexAttributes attributes;
 };
 
 /// Reads and validates `path`. Throws IoError "<path>: <first validation error>" if the mesh
@@ -59,6 +63,16 @@ std::string frame_name(int step);
 /// `truth` (the template's vertices, placed) has them, over `diagonal`.
 std::function<void(const MatchStage&)> stage_errors(const Eigen::MatrixX3d& truth, double diagonal,
                                                     nlohmann::json& stages);
+
+/// The attributes of `loaded` that go with its vertices wherever they move (colours and
+/// values), for the output of a smoothing or a match. Its normals would describe the surface
+/// before the move: they are left out, with a warning on stderr unless `quiet`.
+[[nodiscard]] VertexAttributes carried_attributes(const LoadedMesh& loaded, bool quiet);
+
+/// write_mesh() with `attributes`, its warnings (what the format cannot hold) on stderr unless
+/// `quiet`.
+void write_mesh_with(const std::filesystem::path& path, const TriangleMesh& mesh,
+                     const VertexAttributes& attributes, bool quiet);
 
 /// Checks a mesh output before any work: a format genflow writes (IoError "<path>: cannot write
 /// this format ...") and a place it can be written (check_output_path()).

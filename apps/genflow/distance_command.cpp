@@ -46,7 +46,9 @@ void write_colored(const std::string& path, const TriangleMesh& a, const Triangl
     for (Eigen::Index i = 0; i < distance.size(); ++i) {
         distance[i] = nearest[static_cast<std::size_t>(i)].distance;
     }
-    VertexAttributes attributes{viridis_colors(distance, 0, scale.top), {{"distance", distance}}};
+    VertexAttributes attributes;
+    attributes.colors = viridis_colors(distance, 0, scale.top);
+    attributes.scalars.emplace_back("distance", distance);
     std::vector<std::string> warnings;
     write_mesh(path, a, attributes, {}, &warnings);
     for (const std::string& warning : warnings) {

@@ -95,6 +95,7 @@ void run_match(const MatchCommandOptions& options) {
         job.ground_truth = truth.mesh.V;
     }
     job.template_mesh = template_mesh.mesh;
+    job.template_attributes = carried_attributes(template_mesh, options.json || options.quiet);
     job.target = target.mesh;
     job.template_name = options.template_path;
     job.target_name = options.target_path;

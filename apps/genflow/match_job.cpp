@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "match_job.h"
 
+#include <iostream>
 #include <vector>
 
 #include "cli_support.h"
@@ -29,7 +30,15 @@ VertexAttributes vertex_values(const MatchJob& job, const TriangleMesh& deformed
     for (Eigen::Index i = 0; i < distance.size(); ++i) {
         distance[i] = nearest[static_cast<std::size_t>(i)].distance;
     }
-    VertexAttributes values;
+    VertexAttributes values = job.template_attributes;
+    std::erase_if(values.scalars, [&](const auto& value) {
+        const bool replaced = value.first == "distance" || value.first == "error";
+        if (replaced && job.progress_bar) {
+            std::cerr << "warning: " << printable(job.template_name) << ": its vertex value '"
+                      << printable(value.first) << "' is replaced by the match's\n";
+        }
+        return replaced;
+    });
     values.scalars.emplace_back("distance", distance);
     if (job.ground_truth) {
         values.scalars.emplace_back("error", (deformed.V - *job.ground_truth).rowwise().norm());
@@ -146,7 +155,7 @@ nlohmann::json run_match_job(MatchJob job) {
     // All or none: a failure at the last file leaves the earlier ones as they were.
     OutputTransaction outputs;
     const VertexAttributes values = vertex_values(job, result.deformed);
-    write_mesh(job.output, result.deformed, values);
+    write_mesh_with(job.output, result.deformed, values, !job.progress_bar);
     if (job.colored) {
         write_mesh(*job.colored, result.deformed, colored_by_last(values, diagonal, summary));
         summary["colored"]["file"] = job.colored->string();

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "genflow/io/vertex_attributes.h"
 #include "genflow/matching/match.h"
 
 namespace genflow::cli {
@@ -31,14 +32,18 @@ struct MatchJob {
     /// Known positions of the template's vertices on the target (a generated pair): the
     /// summary then reports the correspondence error.
     std::optional<Eigen::MatrixX3d> ground_truth;
+    /// What the template's file gives per vertex and goes with it onto the target (colours,
+    /// values; carried_attributes()), written with the deformed template.
+    VertexAttributes template_attributes;
     MatchOptions options;
     bool progress_bar = true;
 };
 
 /// Runs the job and returns its summary (also written to job.summary when set). Outputs are
-/// written atomically, only after the match succeeded. A PLY output holds, per vertex, the
-/// deformed template's distance to the target ("distance") and, with a ground truth, its
-/// correspondence error ("error"), both as lengths.
+/// written atomically, only after the match succeeded. The output holds the template's
+/// attributes and, per vertex, the deformed template's distance to the target ("distance")
+/// and, with a ground truth, its correspondence error ("error"), both as lengths (values of
+/// the template's of the same names are replaced, with a warning).
 nlohmann::json run_match_job(MatchJob job);
 
 }  // namespace genflow::cli

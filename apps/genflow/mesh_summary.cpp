@@ -34,6 +34,33 @@ std::string topology_words(const ValidationReport& r) {
     return words;
 }
 
+// What the file gives per vertex: {"normals", "colors", "values": [names]}.
+nlohmann::json attributes_json(const VertexAttributes& attributes) {
+    nlohmann::json names = nlohmann::json::array();
+    for (const auto& [name, values] : attributes.scalars) {
+        names.push_back(name);
+    }
+    return {{"normals", attributes.normals.rows() > 0},
+            {"colors", attributes.colors.rows() > 0},
+            {"values", names}};
+}
+
+// The same as words: "normals, colours, quality".
+std::string attribute_words(const VertexAttributes& attributes) {
+    std::string words;
+    const auto add = [&](const std::string& word) { words += (words.empty() ? "" : ", ") + word; };
+    if (attributes.normals.rows() > 0) {
+        add("normals");
+    }
+    if (attributes.colors.rows() > 0) {
+        add("colours");
+    }
+    for (const auto& [name, values] : attributes.scalars) {
+        add(name);
+    }
+    return words;
+}
+
 }  // namespace
 
 nlohmann::json mesh_summary_json(const LoadedMesh& loaded) {
@@ -77,6 +104,7 @@ nlohmann::json mesh_summary_json(const LoadedMesh& loaded) {
           {"unreferenced_vertices", r.unreferenced_vertices},
           {"issues", issues}}},
         {"read_warnings", loaded.read_warnings},
+        {"vertex_attributes", attributes_json(loaded.attributes)},
     };
 }
 
@@ -94,6 +122,9 @@ std::string mesh_summary_text(const LoadedMesh& loaded) {
         << "  area " << m.area << ", volume " << m.volume
         << (r.closed() ? "" : " (open surface: not a volume)") << '\n'
         << "  bbox diagonal " << m.bbox_diagonal << ", mean edge length " << m.mean_edge << '\n';
+    if (const std::string words = attribute_words(loaded.attributes); !words.empty()) {
+        out << "  per vertex: " << words << '\n';
+    }
     return out.str();
 }
 

@@ -82,7 +82,8 @@ void run_smooth(SmoothCommandOptions options) {
         throw SolverError("smoothing failed after " + std::to_string(result.steps) + " steps (" +
                           to_string(result.status) + "): " + result.message);
     }
-    write_mesh(options.output, result.mesh);
+    write_mesh_with(options.output, result.mesh, carried_attributes(loaded, options.json),
+                    options.json);
 
     const double area_before = surface_area(loaded.mesh);
     const double area_after = surface_area(result.mesh);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Stanford PLY 1.0, ascii and binary in either byte order. We keep the x, y, z properties of
-// the `vertex` element and the vertex-index list of the `face` element, and skip every other
-// element and property by its declared type. Debian ships no PLY parser library (happly,
+// the `vertex` element and the vertex-index list of the `face` element, and, when asked, the
+// vertex element's other single properties (normals, colours, named values); every other
+// element and property is skipped by its declared type. Debian ships no PLY parser library (happly,
 // tinyply and rply are not packaged), so this one is ours and is fuzzed (fuzz/ply_fuzz.cpp).
 #include <algorithm>
 #include <array>
@@ -265,16 +266,118 @@ int normal_axis(std::string_view name) {
     return -1;
 }
 
+// A vertex property holding a colour channel: red, green, blue, or diffuse_red, … (Blender).
+int color_channel(std::string_view name) {
+    if (name.starts_with("diffuse_")) {
+        name.remove_prefix(8);
+    }
+    return name == "red" ? 0 : name == "green" ? 1 : name == "blue" ? 2 : -1;
+}
+
+// Where the vertex element keeps what rides along with its positions (property indices), and
+// what it reads of them; a triple counts only when all three are there.
+struct VertexExtras {
+    std::array<int, 3> normal = {-1, -1, -1};
+    std::array<int, 3> color = {-1, -1, -1};
+    bool float_color = false;  // 0–1 floats rather than 0–255 integers
+    std::vector<int> values;   // every other single property: a named value per vertex
+    std::vector<Eigen::Vector3d> normals;
+    std::vector<std::array<std::uint8_t, 3>> colors;
+    std::vector<std::vector<double>> value_rows;  // per value, per vertex
+
+    static bool complete(const std::array<int, 3>& triple) {
+        return std::ranges::none_of(triple, [](int p) { return p < 0; });
+    }
+};
+
+VertexExtras vertex_extras(const Element& element, const ParseContext& context) {
+    VertexExtras extras;
+    for (int p = 0; p < static_cast<int>(element.properties.size()); ++p) {
+        const Property& property = element.properties[static_cast<std::size_t>(p)];
+        if (property.is_list) {
+            context.warn("vertex property list '" + property.name + "' left out");
+        } else if (const int axis = normal_axis(property.name); axis >= 0) {
+            extras.normal[static_cast<std::size_t>(axis)] = p;
+        } else if (const int channel = color_channel(property.name); channel >= 0) {
+            extras.color[static_cast<std::size_t>(channel)] = p;
+            extras.float_color = !is_integer_type(property.type);
+        } else if (property.name != "x" && property.name != "y" && property.name != "z") {
+            extras.values.push_back(p);
+        }
+    }
+    // A lone component is a value of its own, not part of a normal or a colour.
+    for (std::array<int, 3>* triple : {&extras.normal, &extras.color}) {
+        if (!VertexExtras::complete(*triple)) {
+            for (const int p : *triple) {
+                if (p >= 0) {
+                    extras.values.push_back(p);
+                }
+            }
+            triple->fill(-1);
+        }
+    }
+    std::ranges::sort(extras.values);
+    extras.value_rows.resize(extras.values.size());
+    return extras;
+}
+
+std::uint8_t color_byte(double value, bool unit) {
+    const double scaled = unit ? 255 * value : value;
+    return static_cast<std::uint8_t>(std::lround(std::clamp(scaled, 0.0, 255.0)));
+}
+
+// Keeps vertex `row`'s extras (`values`: the row's single properties, by property index).
+void keep_extras(VertexExtras& extras, const std::vector<double>& values) {
+    if (VertexExtras::complete(extras.normal)) {
+        extras.normals.emplace_back(values[static_cast<std::size_t>(extras.normal[0])],
+                                    values[static_cast<std::size_t>(extras.normal[1])],
+                                    values[static_cast<std::size_t>(extras.normal[2])]);
+    }
+    if (VertexExtras::complete(extras.color)) {
+        std::array<std::uint8_t, 3> color{};
+        for (std::size_t c = 0; c < 3; ++c) {
+            color[c] =
+                color_byte(values[static_cast<std::size_t>(extras.color[c])], extras.float_color);
+        }
+        extras.colors.push_back(color);
+    }
+    for (std::size_t k = 0; k < extras.values.size(); ++k) {
+        extras.value_rows[k].push_back(values[static_cast<std::size_t>(extras.values[k])]);
+    }
+}
+
+void store_extras(const VertexExtras& extras, const Element& vertex, VertexAttributes& out) {
+    out.normals.resize(static_cast<Eigen::Index>(extras.normals.size()), 3);
+    for (std::size_t i = 0; i < extras.normals.size(); ++i) {
+        out.normals.row(static_cast<Eigen::Index>(i)) = extras.normals[i].transpose();
+    }
+    out.colors.resize(static_cast<Eigen::Index>(extras.colors.size()), 3);
+    for (std::size_t i = 0; i < extras.colors.size(); ++i) {
+        for (std::size_t c = 0; c < 3; ++c) {
+            out.colors(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
+                extras.colors[i][c];
+        }
+    }
+    out.scalars.clear();
+    for (std::size_t k = 0; k < extras.values.size(); ++k) {
+        const std::vector<double>& rows = extras.value_rows[k];
+        out.scalars.emplace_back(
+            vertex.properties[static_cast<std::size_t>(extras.values[k])].name,
+            Eigen::Map<const Eigen::VectorXd>(rows.data(), static_cast<Eigen::Index>(rows.size())));
+    }
+}
+
 }  // namespace
 
 TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
-                       Eigen::MatrixX3d* vertex_normals) {
+                       VertexAttributes* attributes) {
     const Header header = parse_header(bytes, context);
     ValueReader reader(bytes.substr(header.data_offset), header.encoding, context);
     MeshBuilder builder(context);
-    bool has_vertices = false;
+    const Element* vertex_element = nullptr;
     std::vector<std::int64_t> corners;
-    std::vector<Eigen::Vector3d> normals;
+    std::vector<double> values;  // a vertex's single properties, by property index
+    VertexExtras extras;
 
     for (const auto& element : header.elements) {
         const bool is_vertex = element.name == "vertex";
@@ -283,16 +386,12 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
         int y = -1;
         int z = -1;
         int indices = -1;
-        std::array<int, 3> normal = {-1, -1, -1};
         for (int p = 0; p < static_cast<int>(element.properties.size()); ++p) {
             const auto& property = element.properties[static_cast<std::size_t>(p)];
             if (is_vertex && !property.is_list) {
                 x = property.name == "x" ? p : x;
                 y = property.name == "y" ? p : y;
                 z = property.name == "z" ? p : z;
-                if (const int axis = normal_axis(property.name); axis >= 0) {
-                    normal[static_cast<std::size_t>(axis)] = p;
-                }
             }
             if (is_face && property.is_list &&
                 (property.name == "vertex_indices" || property.name == "vertex_index" ||
@@ -315,36 +414,23 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
                          std::to_string(element.count) +
                          " items, more than the file can hold (truncated?)");
         }
-        const bool with_normals = is_vertex && vertex_normals != nullptr &&
-                                  std::ranges::none_of(normal, [](int p) { return p < 0; });
+        const bool with_extras = is_vertex && attributes != nullptr;
         if (is_vertex) {
             builder.reserve(static_cast<std::size_t>(element.count), 0);
-            has_vertices = true;
-            normals.clear();
+            vertex_element = &element;
+            extras = with_extras ? vertex_extras(element, context) : VertexExtras{};
         }
         if (element.properties.empty()) {
             continue;  // nothing to read, however many items it declares
         }
 
-        double xyz[3] = {0, 0, 0};
-        double nxyz[3] = {0, 0, 0};
+        values.assign(element.properties.size(), 0);
         for (std::uint64_t i = 0; i < element.count; ++i) {
             corners.clear();
             for (int p = 0; p < static_cast<int>(element.properties.size()); ++p) {
                 const auto& property = element.properties[static_cast<std::size_t>(p)];
                 if (!property.is_list) {
-                    const double value = reader.read(property.type, element.name);
-                    if (p == x)
-                        xyz[0] = value;
-                    if (p == y)
-                        xyz[1] = value;
-                    if (p == z)
-                        xyz[2] = value;
-                    for (int axis = 0; axis < 3; ++axis) {
-                        if (with_normals && p == normal[static_cast<std::size_t>(axis)]) {
-                            nxyz[axis] = value;
-                        }
-                    }
+                    values[static_cast<std::size_t>(p)] = reader.read(property.type, element.name);
                     continue;
                 }
                 const double count = reader.read(property.count_type, element.name);
@@ -361,27 +447,26 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
                 }
             }
             if (is_vertex) {
-                builder.add_vertex(xyz[0], xyz[1], xyz[2]);
-                if (with_normals) {
-                    normals.emplace_back(nxyz[0], nxyz[1], nxyz[2]);
+                builder.add_vertex(values[static_cast<std::size_t>(x)],
+                                   values[static_cast<std::size_t>(y)],
+                                   values[static_cast<std::size_t>(z)]);
+                if (with_extras) {
+                    keep_extras(extras, values);
                 }
             } else if (is_face) {
                 builder.add_polygon(corners);
             }
         }
     }
-    if (!has_vertices) {
+    if (vertex_element == nullptr) {
         context.fail("no 'vertex' element");
     }
     // Data beyond the declared elements: a wrong count would silently drop what follows.
     if (reader.content_left()) {
         context.fail("more data than the header declares");
     }
-    if (vertex_normals != nullptr) {
-        vertex_normals->resize(static_cast<Eigen::Index>(normals.size()), 3);
-        for (std::size_t i = 0; i < normals.size(); ++i) {
-            vertex_normals->row(static_cast<Eigen::Index>(i)) = normals[i].transpose();
-        }
+    if (attributes != nullptr) {
+        store_extras(extras, *vertex_element, *attributes);
     }
     return builder.finish();
 }

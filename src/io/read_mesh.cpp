@@ -20,13 +20,16 @@ std::optional<MeshFormat> mesh_format_from_extension(const std::filesystem::path
 }
 
 TriangleMesh parse_mesh(std::string_view bytes, MeshFormat format, std::string_view source_name,
-                        std::vector<std::string>* warnings) {
+                        std::vector<std::string>* warnings, VertexAttributes* attributes) {
     const detail::ParseContext context{source_name, warnings};
+    if (attributes != nullptr) {
+        *attributes = {};
+    }
     switch (format) {
         case MeshFormat::Obj:
-            return detail::parse_obj(bytes, context);
+            return detail::parse_obj(bytes, context, attributes);
         case MeshFormat::Ply:
-            return detail::parse_ply(bytes, context);
+            return detail::parse_ply(bytes, context, attributes);
         case MeshFormat::Off:
             return detail::parse_off(bytes, context);
         case MeshFormat::Stl:
@@ -35,14 +38,15 @@ TriangleMesh parse_mesh(std::string_view bytes, MeshFormat format, std::string_v
     context.fail("unknown mesh format");
 }
 
-TriangleMesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings) {
+TriangleMesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings,
+                       VertexAttributes* attributes) {
     const std::string name = path.string();
     const auto format = mesh_format_from_extension(path);
     if (!format) {
         throw IoError(name + ": unknown mesh format '" + path.extension().string() +
                       "' (expected .obj, .ply, .off or .stl)");
     }
-    return parse_mesh(detail::read_mesh_file(path), *format, name, warnings);
+    return parse_mesh(detail::read_mesh_file(path), *format, name, warnings, attributes);
 }
 
 namespace detail {

@@ -71,8 +71,9 @@ PointCloud parse_xyz(const std::filesystem::path& path) {
 PointCloud parse_ply_points(const std::filesystem::path& path, std::vector<std::string>* warnings) {
     const std::string name = path.string();
     PointCloud cloud;
-    cloud.points =
-        detail::parse_ply(detail::read_mesh_file(path), {name, warnings}, &cloud.normals).V;
+    VertexAttributes attributes;
+    cloud.points = detail::parse_ply(detail::read_mesh_file(path), {name, warnings}, &attributes).V;
+    cloud.normals = std::move(attributes.normals);
     for (Eigen::Index i = 0; i < cloud.normals.rows(); ++i) {
         if (!cloud.normals.row(i).allFinite() || cloud.normals.row(i).squaredNorm() == 0) {
             throw IoError(name + ": point " + std::to_string(i) + ": the normal is " +

@@ -4,15 +4,20 @@
 
 #include <string_view>
 
+#include "genflow/io/vertex_attributes.h"
 #include "io/parse_context.h"
 
 namespace genflow::detail {
 
-TriangleMesh parse_obj(std::string_view bytes, const ParseContext& context);
-/// With `vertex_normals`, also the vertices' normals where the vertex element has them (nx, ny,
-/// nz or normal_x, normal_y, normal_z): #V×3, else no rows.
+/// With `attributes`, also the colours of `v x y z r g b` records (0–1), when every vertex has
+/// one. Texture coordinates and normals (vt, vn) are not read, with a warning.
+TriangleMesh parse_obj(std::string_view bytes, const ParseContext& context,
+                       VertexAttributes* attributes = nullptr);
+/// With `attributes`, also what the vertex element holds beside x, y, z: normals (nx, ny, nz or
+/// normal_x, …), colours (red, green, blue or diffuse_red, …; 0–1 floats scaled to 0–255) and
+/// every other single property as a named value, each with a row per vertex or none.
 TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
-                       Eigen::MatrixX3d* vertex_normals = nullptr);
+                       VertexAttributes* attributes = nullptr);
 TriangleMesh parse_off(std::string_view bytes, const ParseContext& context);
 TriangleMesh parse_stl(std::string_view bytes, const ParseContext& context);
 

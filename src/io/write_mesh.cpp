@@ -117,8 +117,8 @@ void append_value(std::string& out, double value, bool binary, bool single) {
     }
 }
 
-// Vertex rows "x y z [scalars...] [red green blue]": scalars in the coordinates' type, colours
-// as uchar, as MeshLab and CloudCompare write them.
+// Vertex rows "x y z [nx ny nz] [values...] [red green blue]": normals and values in the
+// coordinates' type, colours as uchar, as MeshLab and CloudCompare write them.
 std::string encode_ply(const TriangleMesh& mesh, const VertexAttributes& attributes,
                        const WriteMeshOptions& options) {
     const bool binary = options.ply_encoding == PlyEncoding::BinaryLittleEndian;
@@ -132,6 +132,10 @@ std::string encode_ply(const TriangleMesh& mesh, const VertexAttributes& attribu
     for (const char* axis : {"x", "y", "z"}) {
         out += "property " + type + " " + axis + "\n";
     }
+    const bool with_normals = attributes.normals.rows() > 0;
+    for (const char* axis : {"nx", "ny", "nz"}) {
+        out += with_normals ? "property " + type + " " + axis + "\n" : "";
+    }
     for (const auto& [name, values] : attributes.scalars) {
         out += "property " + type + " " + name + "\n";
     }
@@ -144,6 +148,9 @@ std::string encode_ply(const TriangleMesh& mesh, const VertexAttributes& attribu
         const std::size_t row_start = out.size();
         for (int c = 0; c < 3; ++c) {
             append_value(out, mesh.V(i, c), binary, single);
+        }
+        for (int c = 0; with_normals && c < 3; ++c) {
+            append_value(out, attributes.normals(i, c), binary, single);
         }
         for (const auto& scalar : attributes.scalars) {
             append_value(out, scalar.second[i], binary, single);
@@ -222,19 +229,25 @@ std::optional<Written> written_format(const std::filesystem::path& path) {
     return extension == ".glb" ? std::optional(Written::Glb) : std::nullopt;
 }
 
-// What `format` leaves out of `attributes`, as a warning's words; empty if nothing.
+// What `format` leaves out of `attributes`, as a warning's words; empty if nothing. glTF gets
+// normals of its own, computed from the faces.
 std::string left_out(Written format, const VertexAttributes& attributes) {
-    const bool colors = attributes.colors.rows() > 0;
-    const bool values = !attributes.scalars.empty();
-    if (format == Written::Stl && (colors || values)) {
-        return colors && values ? "vertex colours and values"
-               : colors         ? "vertex colours"
-                                : "vertex values";
+    std::vector<const char*> missing;
+    if (format == Written::Stl && attributes.colors.rows() > 0) {
+        missing.push_back("colours");
     }
-    if ((format == Written::Obj || format == Written::Off) && values) {
-        return "vertex values";
+    if (format != Written::Ply && attributes.normals.rows() > 0) {
+        missing.push_back("normals");
     }
-    return "";
+    if (format != Written::Ply && format != Written::Glb && !attributes.scalars.empty()) {
+        missing.push_back("values");
+    }
+    std::string words;
+    for (std::size_t k = 0; k < missing.size(); ++k) {
+        words += (k == 0 ? "vertex " : k + 1 == missing.size() ? " and " : ", ");
+        words += missing[k];
+    }
+    return words;
 }
 
 }  // namespace
@@ -253,9 +266,13 @@ void check_attributes(const std::filesystem::path& path, const TriangleMesh& mes
         throw InvalidInput(path.string() + ": " + std::to_string(attributes.colors.rows()) +
                            " vertex colours for " + std::to_string(mesh.V.rows()) + " vertices");
     }
+    if (attributes.normals.rows() != 0 &&
+        (attributes.normals.rows() != mesh.V.rows() || !detail::all_finite(attributes.normals))) {
+        throw InvalidInput(path.string() + ": vertex normals need a finite row per vertex");
+    }
     for (const auto& [name, values] : attributes.scalars) {
-        if (!is_ply_name(name) || name == "x" || name == "y" || name == "z" || name == "red" ||
-            name == "green" || name == "blue") {
+        if (!is_ply_name(name) || name == "x" || name == "y" || name == "z" || name == "nx" ||
+            name == "ny" || name == "nz" || name == "red" || name == "green" || name == "blue") {
             throw InvalidInput(path.string() +
                                ": a vertex value needs a name of its own without "
                                "spaces, got \"" +
@@ -299,7 +316,7 @@ void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
     if (const std::string missing = left_out(*format, attributes);
         !missing.empty() && warnings != nullptr) {
         warnings->push_back(path.string() + ": " + path.extension().string() + " holds no " +
-                            missing + "; write .ply or .glb to keep them");
+                            missing + "; write .ply to keep them");
     }
     std::string bytes;
     switch (*format) {

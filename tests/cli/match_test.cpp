@@ -35,7 +35,10 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     motion.rotation = Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
     motion.translation = Eigen::Vector3d(1, 2, 3);
     target.V = motion.apply(target.V);
-    write_mesh(directory / "template.ply", template_mesh);
+    VertexAttributes painted;  // the template's colours go with it onto the target
+    painted.colors = VertexColors::Zero(template_mesh.V.rows(), 3);
+    painted.colors.col(2) = (template_mesh.V.col(0).array() > 0).cast<std::uint8_t>() * 200;
+    write_mesh(directory / "template.ply", template_mesh, painted);
     write_mesh(directory / "target.obj", target);
     // The template moved as the target was: where each of its vertices belongs.
     write_mesh(directory / "truth.ply",
@@ -86,17 +89,21 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_EQ(lines, template_mesh.V.rows());
     EXPECT_TRUE(std::filesystem::exists(directory / "frames" / "frame_00000.ply"));
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(directory / "summary.json")), json);
-    // The output's rows: x, y, z, then each vertex's distance to the target and its error.
+    // The output's rows: x, y, z, each vertex's distance to the target and its error, and the
+    // template's colour.
     const std::string bytes = read_file(directory / "out.ply");
-    ASSERT_NE(bytes.find("property double distance\nproperty double error\nelement face"),
+    ASSERT_NE(bytes.find("property double distance\nproperty double error\nproperty uchar red"),
               std::string::npos);
+    VertexAttributes carried;
+    (void)read_mesh(directory / "out.ply", nullptr, &carried);
+    EXPECT_EQ(carried.colors, painted.colors);
     const char* rows = bytes.data() + bytes.find("end_header\n") + 11;
     const TriangleMesh truth = read_mesh(directory / "truth.ply");
     double error_sum = 0;
     double largest_error = 0;
     for (Eigen::Index i = 0; i < out.V.rows(); ++i) {
         double values[5];
-        std::memcpy(values, rows + 40 * i, sizeof values);
+        std::memcpy(values, rows + 43 * i, sizeof values);
         EXPECT_EQ(values[0], out.V(i, 0));
         EXPECT_LE(values[3], json["hausdorff"].get<double>());
         EXPECT_DOUBLE_EQ(values[4], (out.V.row(i) - truth.V.row(i)).norm());

@@ -51,6 +51,42 @@ TEST(SmoothCli, SaysSoWhenTheEnergyRose) {
     EXPECT_GT(json["area_after"].get<double>(), json["area_before"].get<double>());
 }
 
+// What the input gives per vertex goes with its vertices: colours and values are written with
+// the smoothed mesh; its normals, which described the surface before, are left out and it
+// says so.
+TEST(SmoothCli, CarriesTheInputsColoursAndValuesAndSaysWhatItLeavesOut) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh noisy = test::noisy_icosphere(3, 0.2);
+    VertexAttributes attributes;
+    attributes.normals = noisy.V;
+    attributes.colors = VertexColors::Zero(noisy.V.rows(), 3);
+    attributes.colors.col(0) = (noisy.V.col(0).array() > 0).cast<std::uint8_t>() * 255;
+    attributes.scalars.emplace_back("quality", noisy.V.col(1));
+    write_mesh(directory / "in.ply", noisy, attributes);
+    const auto result = run_genflow("smooth " + quoted(directory / "in.ply") + " " +
+                                    quoted(directory / "out.ply") + " --steps 2");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.err.find("in.ply: its vertex normals are left out"), std::string::npos)
+        << result.err;
+    VertexAttributes out;
+    const TriangleMesh smoothed = read_mesh(directory / "out.ply", nullptr, &out);
+    EXPECT_GT((smoothed.V - noisy.V).norm(), 0);
+    EXPECT_EQ(out.colors, attributes.colors);
+    ASSERT_EQ(out.scalars.size(), 1U);
+    EXPECT_EQ(out.scalars[0].second, attributes.scalars[0].second);
+    EXPECT_EQ(out.normals.rows(), 0);
+    // info says what the file gives per vertex.
+    const auto info =
+        nlohmann::json::parse(run_genflow("info --json " + quoted(directory / "in.ply")).out);
+    EXPECT_EQ(info["vertex_attributes"],
+              nlohmann::json({{"normals", true}, {"colors", true}, {"values", {"quality"}}}));
+    // OFF keeps the colours, not the values: said too.
+    const auto off = run_genflow("smooth " + quoted(directory / "in.ply") + " " +
+                                 quoted(directory / "out.off") + " --steps 2");
+    ASSERT_EQ(off.exit_code, 0) << off.err;
+    EXPECT_NE(off.err.find("out.off: .off holds no vertex values"), std::string::npos) << off.err;
+}
+
 TEST(SmoothCli, VolumeFairingKeepsTheVolumeThatFairingLoses) {
     const test::TemporaryDirectory directory;
     write_mesh(directory / "noisy.ply", test::noisy_torus(60, 24, 0.3));

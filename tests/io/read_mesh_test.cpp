@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "genflow/exceptions.h"
+#include "genflow/io/write_mesh.h"
 #include "support/test_meshes.h"
 
 namespace genflow {
@@ -124,7 +125,7 @@ TEST(ReadMesh, ObjWithPolygonsSlashesNegativeIndicesAndComments) {
         parse("# comment\nmtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0 1.0\nv 0 1 0\n"
               "vn 0 0 1\nvt 0 0\ng square\nf 1/1/1 2//1 3/1 -1 # quad\n",
               MeshFormat::Obj, &warnings));
-    EXPECT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings.size(), 2u);  // the quad split, and the vt and vn left out
 }
 
 TEST(ReadMesh, OffWithCommentsColoursAndCountsOnTheKeywordLine) {
@@ -148,6 +149,84 @@ TEST(ReadMesh, AsciiStlIsWelded) {
 
 TEST(ReadMesh, BinaryStlIsWeldedEvenWhenItStartsWithSolid) {
     expect_square(parse(binary_stl(), MeshFormat::Stl));
+}
+
+// A PLY file's vertex normals, colours (uchar, or 0–1 floats as some tools write them) and
+// other vertex properties are read when asked for; a lone component is a value of its own.
+TEST(ReadMesh, ReadsThePlyVerticesNormalsColoursAndValues) {
+    const std::string header =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+        "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float "
+        "quality\nproperty float s\nelement face 1\nproperty list uchar int vertex_indices\n"
+        "end_header\n";
+    const std::string body =
+        "0 0 0 0 0 1 255 0 10 0.5 7\n1 0 0 0 0 1 0 128 0 1.5 8\n"
+        "0 1 0 0 0 1 1 2 3 2.5 9\n3 0 1 2\n";
+    VertexAttributes attributes;
+    const TriangleMesh mesh =
+        parse_mesh(header + body, MeshFormat::Ply, "a.ply", nullptr, &attributes);
+    ASSERT_EQ(mesh.V.rows(), 3);
+    ASSERT_EQ(attributes.normals.rows(), 3);
+    EXPECT_EQ(attributes.normals.row(1), Eigen::RowVector3d(0, 0, 1));
+    ASSERT_EQ(attributes.colors.rows(), 3);
+    EXPECT_EQ(attributes.colors(0, 0), 255);
+    EXPECT_EQ(attributes.colors(1, 1), 128);
+    EXPECT_EQ(attributes.colors(2, 2), 3);
+    ASSERT_EQ(attributes.scalars.size(), 2U);
+    EXPECT_EQ(attributes.scalars[0].first, "quality");
+    EXPECT_EQ(attributes.scalars[0].second, Eigen::Vector3d(0.5, 1.5, 2.5));
+    EXPECT_EQ(attributes.scalars[1].first, "s");
+    std::string floats = header;
+    for (const char* channel : {"red", "green", "blue"}) {
+        floats.replace(floats.find(std::string("uchar ") + channel), 5, "float");
+    }
+    const std::string float_body =
+        "0 0 0 0 0 1 1 0 0.5 0.5 7\n1 0 0 0 0 1 0 1 0 1.5 8\n"
+        "0 1 0 0 0 1 0 0 1 2.5 9\n3 0 1 2\n";
+    (void)parse_mesh(floats + float_body, MeshFormat::Ply, "f.ply", nullptr, &attributes);
+    EXPECT_EQ(attributes.colors(0, 2), 128);  // 0.5 of 255
+    std::string lone = header;
+    lone.replace(lone.find("property float ny\n"), 18, "");
+    const std::string lone_body =
+        "0 0 0 0 1 255 0 10 0.5 7\n1 0 0 0 1 0 128 0 1.5 8\n"
+        "0 1 0 0 1 1 2 3 2.5 9\n3 0 1 2\n";
+    (void)parse_mesh(lone + lone_body, MeshFormat::Ply, "l.ply", nullptr, &attributes);
+    EXPECT_EQ(attributes.normals.rows(), 0);
+    EXPECT_EQ(attributes.scalars.size(), 4U);  // nx, nz, quality, s
+}
+
+// What write_mesh() writes, read_mesh() reads back: PLY keeps normals, colours and values to
+// the bit, OBJ the colours.
+TEST(ReadMesh, ReadsBackTheAttributesGenflowWrites) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh mesh = test::noisy_icosphere(1);
+    VertexAttributes written;
+    written.normals = mesh.V;
+    written.colors = VertexColors::Zero(mesh.V.rows(), 3);
+    written.colors.col(1).setConstant(200);
+    written.colors(5, 0) = 17;
+    written.scalars.emplace_back("distance", mesh.V.col(2));
+    write_mesh(directory / "a.ply", mesh, written);
+    VertexAttributes read;
+    (void)read_mesh(directory / "a.ply", nullptr, &read);
+    EXPECT_EQ(read.normals, written.normals);
+    EXPECT_EQ(read.colors, written.colors);
+    ASSERT_EQ(read.scalars.size(), 1U);
+    EXPECT_EQ(read.scalars[0].first, "distance");
+    EXPECT_EQ(read.scalars[0].second, written.scalars[0].second);
+    write_mesh(directory / "a.obj", mesh, written);
+    (void)read_mesh(directory / "a.obj", nullptr, &read);
+    EXPECT_EQ(read.colors, written.colors);
+}
+
+// Texture coordinates and per-corner normals of an OBJ file are not read, and it says so.
+TEST(ReadMesh, SaysWhatAnObjFileHoldsThatIsLeftOut) {
+    std::vector<std::string> warnings;
+    (void)parse_mesh("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n",
+                     MeshFormat::Obj, "t.obj", &warnings);
+    ASSERT_EQ(warnings.size(), 1U);
+    EXPECT_EQ(warnings[0], "t.obj: 3 texture coordinate and normal records (vt, vn) left out");
 }
 
 TEST(ReadMesh, FromFilesByExtension) {

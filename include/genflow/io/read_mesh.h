@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "genflow/io/mesh_format.h"
+#include "genflow/io/vertex_attributes.h"
 #include "genflow/mesh.h"
 
 namespace genflow {
@@ -19,8 +20,10 @@ namespace genflow {
 ///   dropped with a warning.
 /// - STL stores a triangle soup: vertices with bitwise-equal coordinates are merged, in order of
 ///   first appearance.
-/// - Everything but positions and faces (normals, colours, texture coordinates, materials,
-///   extra PLY elements and properties) is skipped.
+/// - With `attributes`, a PLY file's vertex normals, colours and other vertex properties are
+///   read into it (VertexAttributes; genflow writes them back), and so are the colours of an
+///   OBJ file's `v x y z r g b` records. Everything else (texture coordinates, per-corner
+///   normals, materials, other PLY elements) is skipped, with a warning where it held data.
 /// - Nothing is checked beyond what is needed to parse the file: call `validate()` on the result
 ///   for non-finite coordinates, indices out of range, degenerate or non-manifold faces.
 ///
@@ -32,12 +35,14 @@ namespace genflow {
 /// \throws IoError  "<path>: <problem>" if the file cannot be opened, its extension is unknown,
 ///                  or its content is malformed.
 [[nodiscard]] TriangleMesh read_mesh(const std::filesystem::path& path,
-                                     std::vector<std::string>* warnings = nullptr);
+                                     std::vector<std::string>* warnings = nullptr,
+                                     VertexAttributes* attributes = nullptr);
 
 /// Parses a mesh held in memory; the same as `read_mesh` without the file. `source_name`
 /// prefixes the messages of thrown IoErrors and warnings.
 [[nodiscard]] TriangleMesh parse_mesh(std::string_view bytes, MeshFormat format,
                                       std::string_view source_name = "<memory>",
-                                      std::vector<std::string>* warnings = nullptr);
+                                      std::vector<std::string>* warnings = nullptr,
+                                      VertexAttributes* attributes = nullptr);
 
 }  // namespace genflow

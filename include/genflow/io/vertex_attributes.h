@@ -16,6 +16,8 @@ using VertexColors = Eigen::Matrix<std::uint8_t, Eigen::Dynamic, 3, Eigen::RowMa
 struct VertexAttributes {
     /// A colour per vertex, or no rows.
     VertexColors colors;
+    /// A normal per vertex as the file gives it (not necessarily of unit length), or no rows.
+    Eigen::MatrixX3d normals;
     /// Named values per vertex (a PLY property each, e.g. "distance"), each as long as V.
     std::vector<std::pair<std::string, Eigen::VectorXd>> scalars;
 };
