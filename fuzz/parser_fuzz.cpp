@@ -11,8 +11,10 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     try {
-        const auto mesh = genflow::parse_mesh(
-            std::string_view(reinterpret_cast<const char*>(data), size), GENFLOW_FUZZ_FORMAT);
+        genflow::VertexAttributes attributes;  // the per-vertex data too
+        const auto mesh =
+            genflow::parse_mesh(std::string_view(reinterpret_cast<const char*>(data), size),
+                                GENFLOW_FUZZ_FORMAT, "<fuzz>", nullptr, &attributes);
         (void)genflow::validate(mesh);  // whatever parses must also validate without crashing
     } catch (const genflow::IoError&) {
     }
