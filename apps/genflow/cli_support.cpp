@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "genflow/exceptions.h"
@@ -12,6 +13,7 @@
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/read_points.h"
 #include "genflow/io/write_mesh.h"
+#include "genflow/mesh/repair.h"
 #include "genflow/spatial/point_cloud_surface.h"
 #include "number_checks.h"
 
@@ -87,14 +89,20 @@ LoadedMesh load_target(const std::filesystem::path& path) {
     return loaded;
 }
 
-std::function<void(const MatchStage&)> stage_errors(const Eigen::MatrixX3d& truth, double diagonal,
+std::function<void(const MatchStage&)> stage_errors(const TriangleMesh& template_mesh,
+                                                    const Eigen::MatrixX3d& truth, double diagonal,
                                                     nlohmann::json& stages) {
-    return [&truth, diagonal, &stages](const MatchStage& stage) {
+    // The stages' vertices are those of the template as match() repairs it (the input itself
+    // unless it needed a repair); each stands for an input vertex, whose place `truth` gives.
+    auto input_vertex = std::make_shared<const std::vector<Eigen::Index>>(
+        repair_surface(template_mesh).source_vertex);
+    return [input_vertex, &truth, diagonal, &stages](const MatchStage& stage) {
         const Eigen::MatrixX3d& V = stage.mesh->V;
         double sum = 0;
         for (Eigen::Index v = 0; v < V.rows(); ++v) {
-            sum += (V.row(v) - truth.row((*stage.template_vertex)[static_cast<std::size_t>(v)]))
-                       .norm();
+            const Eigen::Index repaired = (*stage.template_vertex)[static_cast<std::size_t>(v)];
+            sum +=
+                (V.row(v) - truth.row((*input_vertex)[static_cast<std::size_t>(repaired)])).norm();
         }
         const double mean = V.rows() > 0 ? sum / static_cast<double>(V.rows()) : 0;
         stages.push_back({{"level", stage.level},

@@ -60,8 +60,9 @@ std::string frame_name(int step);
 
 /// A MatchOptions::stages callback that appends to `stages`, per stage of each level, its
 /// "level", "stage", "vertices" and "mean": the mean distance of the level's vertices from where
-/// `truth` (the template's vertices, placed) has them, over `diagonal`.
-std::function<void(const MatchStage&)> stage_errors(const Eigen::MatrixX3d& truth, double diagonal,
+/// `truth` (a row per vertex of `template_mesh`, placed) has them, over `diagonal`.
+std::function<void(const MatchStage&)> stage_errors(const TriangleMesh& template_mesh,
+                                                    const Eigen::MatrixX3d& truth, double diagonal,
                                                     nlohmann::json& stages);
 
 /// The attributes of `loaded` that go with its vertices wherever they move (colours and

@@ -94,7 +94,7 @@ void run_eval(const EvalOptions& options) {
             match_options.parts = parts;
             nlohmann::json stages = nlohmann::json::array();
             if (options.stages) {
-                match_options.stages = stage_errors(truth.V, diagonal, stages);
+                match_options.stages = stage_errors(template_mesh, truth.V, diagonal, stages);
             }
             const MatchResult result = match(template_mesh, target, match_options);
             const CorrespondenceError error = correspondence_error(result.deformed.V, truth);

@@ -85,7 +85,8 @@ nlohmann::json run_match_job(MatchJob job) {
             ? bounding_box_diagonal(TriangleMesh{*job.ground_truth, job.template_mesh.F})
             : 0;
     if (job.ground_truth) {
-        job.options.stages = stage_errors(*job.ground_truth, truth_diagonal, stages);
+        job.options.stages =
+            stage_errors(job.template_mesh, *job.ground_truth, truth_diagonal, stages);
     }
     const MatchResult result = match(job.template_mesh, job.target, job.options);
     bar.finish();

@@ -291,14 +291,22 @@ TEST(MatchCli, MatchesANonManifoldTemplateAsRepaired) {
     write_mesh(directory / "fin.obj", fin);
     write_mesh(directory / "limb.ply", make_limb(3, 5));
     const auto out = directory / "out.ply";
+    // Its own positions as the ground truth: the stages' errors are how far it moved, each
+    // repaired vertex measured against the input vertex it stands for.
     const auto result = run_genflow("match " + quoted(directory / "fin.obj") + " " +
                                     quoted(directory / "limb.ply") + " -o " + quoted(out) +
-                                    " --prior rigid --iterations 30");
+                                    " --prior rigid --iterations 30 --json --ground-truth " +
+                                    quoted(directory / "fin.obj"));
     ASSERT_EQ(result.exit_code, 0) << result.err;
-    EXPECT_NE(result.err.find("fin.obj: matched as repaired (removed duplicate faces: 1; split "
-                              "non-manifold vertices: 2; left out 1 smaller components"),
-              std::string::npos)
-        << result.err;
+    const auto json = nlohmann::json::parse(result.out);
+    ASSERT_FALSE(json["stages"].empty());
+    const double moved = json["correspondence_error_over_diagonal"]["mean"].get<double>();
+    EXPECT_GT(moved, 0.01);
+    EXPECT_NEAR(json["stages"].back()["mean"].get<double>(), moved, 0.2 * moved);
+    EXPECT_TRUE(json["template_repairs"].get<std::string>().starts_with(
+        "removed duplicate faces: 1; split non-manifold vertices: 2; left out 1 smaller "
+        "components"))
+        << json["template_repairs"];
     const TriangleMesh matched = read_mesh(out);
     EXPECT_EQ(matched.V.rows(), fin.V.rows());
     EXPECT_EQ(matched.F, fin.F);
