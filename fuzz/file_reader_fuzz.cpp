@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "genflow/exceptions.h"
+#include "genflow/io/read_correspondences.h"
 #include "genflow/io/read_landmarks.h"
 #include "genflow/io/read_part_model.h"
 #include "genflow/io/read_points.h"
@@ -85,6 +86,13 @@ void part_weights(std::string_view bytes) {
     genflow::PartFiles files{written("tree.json", kTree)};
     files.weights = written("weights.txt", bytes);
     (void)genflow::read_part_model(files, kVertices);
+}
+
+void correspondences(std::string_view bytes) {
+    static const genflow::TriangleMesh target{
+        (Eigen::MatrixX3d(4, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1).finished(),
+        (Eigen::MatrixX3i(4, 3) << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3).finished()};
+    (void)genflow::read_correspondences(written("map.txt", bytes), target, kVertices);
 }
 
 void pairs(std::string_view bytes) {

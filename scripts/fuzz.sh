@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 seconds=${1:-10}
 targets=(ply off stl obj xyz_points ply_points landmarks reference_points part_tree part_labels
-         part_weights pairs)
+         part_weights correspondences pairs)
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz --target "${targets[@]/%/_fuzz}"
 work=$(mktemp -d)
@@ -27,8 +27,10 @@ run() {
 status=0
 for ((k = 0; k < ${#targets[@]}; k += 2)); do
   run "${targets[k]}" & first=$!
-  run "${targets[k + 1]}" & second=$!
+  if ((k + 1 < ${#targets[@]})); then
+    run "${targets[k + 1]}" & second=$!
+    wait $second || status=1
+  fi
   wait $first || status=1
-  wait $second || status=1
 done
 exit $status

@@ -13,5 +13,6 @@ void register_distance_command(CLI::App& app);
 void register_match_command(CLI::App& app);
 void register_eval_command(CLI::App& app);
 void register_benchmark_command(CLI::App& app);
+void register_transfer_command(CLI::App& app);
 
 }  // namespace genflow::cli

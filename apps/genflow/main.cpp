@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
     register_smooth_command(app);
     register_distance_command(app);
     register_match_command(app);
+    register_transfer_command(app);
     register_eval_command(app);
     register_benchmark_command(app);
     register_demo_command(app);

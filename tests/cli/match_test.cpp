@@ -120,6 +120,72 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_NE(read_file(directory / "colored.ply").find("property uchar red"), std::string::npos);
 }
 
+// A painted template matched onto a moved and resampled copy of itself hands its colours,
+// labels and values to the target's vertices through the correspondence file: a label comes
+// whole from the nearest corner, a value interpolated.
+TEST(MatchCli, TransferCarriesTheTemplatesAttributesToTheTarget) {
+    const test::TemporaryDirectory directory;
+    const TriangleMesh limb = make_limb(3);
+    TriangleMesh target = make_limb(4, 5);
+    Similarity motion;
+    motion.rotation = Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    motion.translation = Eigen::Vector3d(2, 0, 1);
+    const Eigen::MatrixX3d target_at_rest = target.V;
+    target.V = motion.apply(target.V);
+    const Eigen::Index axis = 0;
+    const double middle = limb.V.col(axis).mean();
+    VertexAttributes painted;
+    painted.colors = VertexColors::Zero(limb.V.rows(), 3);
+    painted.colors.col(0) = (limb.V.col(axis).array() > middle).cast<std::uint8_t>() * 255;
+    painted.scalars.emplace_back("part", (limb.V.col(axis).array() > middle).cast<double>());
+    painted.scalars.emplace_back("height", limb.V.col(axis));
+    write_mesh(directory / "template.ply", limb, painted);
+    write_mesh(directory / "target.ply", target);
+    const auto matched =
+        run_genflow("match " + quoted(directory / "template.ply") + " " +
+                    quoted(directory / "target.ply") + " -o " + quoted(directory / "out.ply") +
+                    " --prior rigid --iterations 60 --quiet "
+                    "--correspondence " +
+                    quoted(directory / "map.txt"));
+    ASSERT_EQ(matched.exit_code, 0) << matched.err;
+    const auto result = run_genflow(
+        "transfer " + quoted(directory / "template.ply") + " " + quoted(directory / "target.ply") +
+        " " + quoted(directory / "map.txt") + " -o " + quoted(directory / "painted.ply"));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    VertexAttributes carried;
+    const TriangleMesh out = read_mesh(directory / "painted.ply", nullptr, &carried);
+    EXPECT_EQ(out.V, target.V);
+    ASSERT_EQ(carried.colors.rows(), target.V.rows());
+    ASSERT_EQ(carried.scalars.size(), 2U);
+    const double extent = limb.V.col(axis).maxCoeff() - limb.V.col(axis).minCoeff();
+    int wrong = 0;
+    double height_error = 0;
+    for (Eigen::Index t = 0; t < target.V.rows(); ++t) {
+        const double height = target_at_rest(t, axis);
+        const double part = carried.scalars[0].second[t];
+        EXPECT_TRUE(part == 0 || part == 1) << part;  // a label, never a blend
+        if (std::abs(height - middle) > 0.05 * extent) {
+            wrong += (part == 1) != (height > middle) ? 1 : 0;
+            // Colours are interpolated: blended across the faces that straddle the middle.
+            EXPECT_EQ(carried.colors(t, 0) > 127, part == 1) << int(carried.colors(t, 0));
+        }
+        height_error += std::abs(carried.scalars[1].second[t] - height);
+    }
+    EXPECT_EQ(wrong, 0);
+    EXPECT_LT(height_error / static_cast<double>(target.V.rows()), 0.02 * extent);
+    // A correspondence file of another template is refused, naming it.
+    const TriangleMesh small_limb = make_limb(2);
+    VertexAttributes small;
+    small.scalars.emplace_back("v", Eigen::VectorXd::Zero(small_limb.V.rows()));
+    write_mesh(directory / "small.ply", small_limb, small);
+    const auto mismatch = run_genflow(
+        "transfer " + quoted(directory / "small.ply") + " " + quoted(directory / "target.ply") +
+        " " + quoted(directory / "map.txt") + " -o " + quoted(directory / "x.ply"));
+    EXPECT_EQ(mismatch.exit_code, 2);
+    EXPECT_NE(mismatch.err.find("map.txt: line"), std::string::npos) << mismatch.err;
+    EXPECT_FALSE(std::filesystem::exists(directory / "x.ply"));
+}
+
 // The counterparts' stage runs by default (and says how many vertices it moved from the closest
 // point), --no-counterparts turns it off, and --counterpart-reach must be positive.
 // Every output is checked before the match: one that cannot be written fails the run (exit 1)
