@@ -13,6 +13,7 @@
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/read_points.h"
 #include "genflow/io/write_mesh.h"
+#include "genflow/matching/correspondence.h"
 #include "genflow/mesh/repair.h"
 #include "genflow/spatial/point_cloud_surface.h"
 #include "number_checks.h"
@@ -110,6 +111,21 @@ std::function<void(const MatchStage&)> stage_errors(const TriangleMesh& template
                           {"vertices", V.rows()},
                           {"mean", mean / diagonal}});
     };
+}
+
+std::vector<std::pair<std::string, Eigen::VectorXd>> result_values(
+    const TriangleMesh& deformed, const TriangleMesh& target,
+    const Eigen::MatrixX3d* ground_truth) {
+    const std::vector<SurfacePoint> nearest = closest_points(deformed.V, target);
+    Eigen::VectorXd distance(deformed.V.rows());
+    for (Eigen::Index i = 0; i < distance.size(); ++i) {
+        distance[i] = nearest[static_cast<std::size_t>(i)].distance;
+    }
+    std::vector<std::pair<std::string, Eigen::VectorXd>> values{{"distance", distance}};
+    if (ground_truth != nullptr) {
+        values.emplace_back("error", (deformed.V - *ground_truth).rowwise().norm());
+    }
+    return values;
 }
 
 void check_mesh_output(const std::string& path) {

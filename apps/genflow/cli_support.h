@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "genflow/io/vertex_attributes.h"
@@ -74,6 +75,12 @@ std::function<void(const MatchStage&)> stage_errors(const TriangleMesh& template
 /// `quiet`.
 void write_mesh_with(const std::filesystem::path& path, const TriangleMesh& mesh,
                      const VertexAttributes& attributes, bool quiet);
+
+/// A match's values per vertex of its deformed template, written with it: "distance" to the
+/// target's surface and, given the ground truth (the template's vertices, placed), "error",
+/// the distance from where the vertex belongs; both as lengths.
+[[nodiscard]] std::vector<std::pair<std::string, Eigen::VectorXd>> result_values(
+    const TriangleMesh& deformed, const TriangleMesh& target, const Eigen::MatrixX3d* ground_truth);
 
 /// Checks a mesh output before any work: a format genflow writes (IoError "<path>: cannot write
 /// this format ...") and a place it can be written (check_output_path()).

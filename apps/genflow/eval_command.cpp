@@ -101,7 +101,10 @@ void run_eval(const EvalOptions& options) {
             const double hausdorff =
                 surface_distances(result.deformed, target).hausdorff / diagonal;
             if (!output_dir.empty()) {
-                write_mesh(output_dir / (name + "." + prior_name + ".ply"), result.deformed);
+                VertexAttributes values;
+                values.scalars = result_values(result.deformed, target, &truth.V);
+                write_mesh(output_dir / (name + "." + prior_name + ".ply"), result.deformed,
+                           values);
             }
             nlohmann::json row = {{"pair", name},
                                   {"prior", prior_name},
@@ -179,7 +182,7 @@ void register_eval_command(CLI::App& app) {
     command->add_option("--output-dir", options->output_dir,
                         "Write there each pair's target as matched (NAME.target.ply) and each "
                         "match's deformed template (NAME.PRIOR.ply, the template's vertices and "
-                        "faces)");
+                        "faces, with each vertex's distance to the target and error)");
     command->add_flag("--stages", options->stages,
                       "Also the mean error after each stage of each level (\"stages\" in the "
                       "JSON; on standard error beside the table): where a match lost accuracy");

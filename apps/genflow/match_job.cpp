@@ -25,11 +25,6 @@ namespace {
 // The deformed template's values per vertex, written with it: its distance to the target's
 // surface, and with a ground truth its distance from where the vertex belongs.
 VertexAttributes vertex_values(const MatchJob& job, const TriangleMesh& deformed) {
-    const std::vector<SurfacePoint> nearest = closest_points(deformed.V, job.target);
-    Eigen::VectorXd distance(deformed.V.rows());
-    for (Eigen::Index i = 0; i < distance.size(); ++i) {
-        distance[i] = nearest[static_cast<std::size_t>(i)].distance;
-    }
     VertexAttributes values = job.template_attributes;
     std::erase_if(values.scalars, [&](const auto& value) {
         const bool replaced = value.first == "distance" || value.first == "error";
@@ -39,9 +34,9 @@ VertexAttributes vertex_values(const MatchJob& job, const TriangleMesh& deformed
         }
         return replaced;
     });
-    values.scalars.emplace_back("distance", distance);
-    if (job.ground_truth) {
-        values.scalars.emplace_back("error", (deformed.V - *job.ground_truth).rowwise().norm());
+    for (auto& value :
+         result_values(deformed, job.target, job.ground_truth ? &*job.ground_truth : nullptr)) {
+        values.scalars.push_back(std::move(value));
     }
     return values;
 }

@@ -138,6 +138,13 @@ TEST(EvalCli, WritesTheTargetAsMatchedAndTheResultToTheOutputDirectory) {
     ASSERT_EQ(deformed.V.rows(), truth.V.rows());
     EXPECT_EQ(deformed.F, truth.F);
     EXPECT_LT(correspondence_error(deformed.V, truth).mean, 0.02);
+    // With each vertex's distance to the target and its error against the truth.
+    VertexAttributes values;
+    (void)read_mesh(out / "limb.rigid.ply", nullptr, &values);
+    ASSERT_EQ(values.scalars.size(), 2U);
+    EXPECT_EQ(values.scalars[0].first, "distance");
+    EXPECT_EQ(values.scalars[1].first, "error");
+    EXPECT_EQ(values.scalars[1].second, (deformed.V - truth.V).rowwise().norm());
 }
 
 TEST(EvalCli, RefusesAnOutputDirectoryItCannotCreateBeforeMatching) {
