@@ -41,19 +41,10 @@ struct ColorScale {
 // viridis over `scale`.
 void write_colored(const std::string& path, const TriangleMesh& a, const TriangleMesh& b,
                    const ColorScale& scale) {
-    const std::vector<SurfacePoint> nearest = closest_points(a.V, b);
-    Eigen::VectorXd distance(a.V.rows());
-    for (Eigen::Index i = 0; i < distance.size(); ++i) {
-        distance[i] = nearest[static_cast<std::size_t>(i)].distance;
-    }
     VertexAttributes attributes;
-    attributes.colors = viridis_colors(distance, 0, scale.top);
-    attributes.scalars.emplace_back("distance", distance);
-    std::vector<std::string> warnings;
-    write_mesh(path, a, attributes, {}, &warnings);
-    for (const std::string& warning : warnings) {
-        std::fprintf(stderr, "warning: %s\n", printable(warning).c_str());
-    }
+    attributes.scalars = result_values(a, b, nullptr);
+    attributes.colors = viridis_colors(attributes.scalars.front().second, 0, scale.top);
+    write_mesh_with(path, a, attributes, false);
 }
 
 // The top of the colour scale: --scale, else the Hausdorff distance A → B (the largest of the

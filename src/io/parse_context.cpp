@@ -8,6 +8,8 @@
 #include <limits>
 #include <sstream>
 
+#include "genflow/io/read_file.h"
+
 namespace genflow::detail {
 
 void MeshBuilder::add_polygon(const std::vector<std::int64_t>& corners) {
@@ -134,6 +136,25 @@ bool iequals(std::string_view a, std::string_view b) {
                return std::tolower(static_cast<unsigned char>(x)) ==
                       std::tolower(static_cast<unsigned char>(y));
            });
+}
+
+void DataLine::fail(const std::string& problem) const {
+    throw IoError(path->string() + ": line " + std::to_string(number) + ": " + problem);
+}
+
+void for_each_data_line(const std::filesystem::path& path,
+                        const std::function<void(const DataLine&)>& visit) {
+    const std::string text = read_file(path);
+    TextScanner scanner(text);
+    DataLine line;
+    line.path = &path;
+    for (line.number = 1; !scanner.at_end(); ++line.number) {
+        const std::string_view content = scanner.next_line();
+        split_tokens(content.substr(0, content.find('#')), line.tokens);
+        if (!line.tokens.empty()) {
+            visit(line);
+        }
+    }
 }
 
 }  // namespace genflow::detail

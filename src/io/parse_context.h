@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -113,6 +114,22 @@ void split_tokens(std::string_view line, std::vector<std::string_view>& tokens);
 
 /// Parses a complete token as a signed 64-bit integer (a leading '+' is allowed).
 [[nodiscard]] bool parse_integer(std::string_view token, std::int64_t& value);
+
+/// One line of a line-based text file that has content: its whitespace-separated tokens, without
+/// its comment (from a '#' to the end of the line).
+struct DataLine {
+    std::vector<std::string_view> tokens;
+    std::size_t number = 0;  ///< 1-based, as editors count
+    const std::filesystem::path* path = nullptr;
+
+    /// Throws IoError "<path>: line <number>: <problem>".
+    [[noreturn]] void fail(const std::string& problem) const;
+};
+
+/// Reads the text file at `path` and calls `visit` on each of its lines that has content;
+/// blank and comment-only lines are skipped but counted.
+void for_each_data_line(const std::filesystem::path& path,
+                        const std::function<void(const DataLine&)>& visit);
 
 /// Case-insensitive ASCII comparison.
 [[nodiscard]] bool iequals(std::string_view a, std::string_view b);

@@ -5,7 +5,6 @@
 #include <string>
 
 #include "genflow/exceptions.h"
-#include "genflow/io/read_file.h"
 #include "io/parse_context.h"
 
 namespace genflow {
@@ -37,18 +36,9 @@ std::string problem_with(const SurfacePoint& p, Eigen::Index faces) {
 std::vector<SurfacePoint> read_correspondences(const std::filesystem::path& path,
                                                const TriangleMesh& target,
                                                Eigen::Index template_vertices) {
-    const std::string text = read_file(path);
-    detail::TextScanner scanner(text);
-    std::vector<std::string_view> tokens;
     std::vector<SurfacePoint> points;
-    const auto fail = [&](std::size_t line, const std::string& problem) {
-        throw IoError(path.string() + ": line " + std::to_string(line) + ": " + problem);
-    };
-    for (std::size_t line = 1; !scanner.at_end(); ++line) {
-        detail::split_tokens(scanner.next_line(), tokens);
-        if (tokens.empty() || tokens.front().front() == '#') {
-            continue;
-        }
+    detail::for_each_data_line(path, [&](const detail::DataLine& line) {
+        const std::vector<std::string_view>& tokens = line.tokens;
         SurfacePoint p;
         std::int64_t face = 0;
         if (tokens.size() != 5 || !detail::parse_integer(tokens[0], face) ||
@@ -56,22 +46,22 @@ std::vector<SurfacePoint> read_correspondences(const std::filesystem::path& path
             !detail::parse_double(tokens[2], p.barycentric[1]) ||
             !detail::parse_double(tokens[3], p.barycentric[2]) ||
             !detail::parse_double(tokens[4], p.distance)) {
-            fail(line, "expected 'face b0 b1 b2 distance'");
+            line.fail("expected 'face b0 b1 b2 distance'");
         }
         p.face = static_cast<Eigen::Index>(face);
         if (const std::string problem = problem_with(p, target.F.rows()); !problem.empty()) {
-            fail(line, problem);
+            line.fail(problem);
         }
         if (static_cast<Eigen::Index>(points.size()) == template_vertices) {
-            fail(line, "more lines than the template's " + std::to_string(template_vertices) +
-                           " vertices");
+            line.fail("more lines than the template's " + std::to_string(template_vertices) +
+                      " vertices");
         }
         p.point = Eigen::Vector3d::Zero();
         for (int c = 0; c < 3; ++c) {
             p.point += p.barycentric[c] * target.V.row(target.F(p.face, c)).transpose();
         }
         points.push_back(p);
-    }
+    });
     if (static_cast<Eigen::Index>(points.size()) != template_vertices) {
         throw IoError(path.string() + ": " + std::to_string(points.size()) +
                       " correspondences for the template's " + std::to_string(template_vertices) +

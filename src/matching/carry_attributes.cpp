@@ -45,7 +45,8 @@ VertexAttributes carry_attributes(const TriangleMesh& template_mesh,
     const TriangleBvh bvh(laid_over);
     const Eigen::Index count = target.V.rows();
     VertexAttributes carried;
-    if (attributes.colors.rows() > 0) {
+    const bool has_colors = attributes.colors.rows() > 0;
+    if (has_colors) {
         carried.colors.resize(count, 3);
     }
     for (const auto& [name, values] : attributes.scalars) {
@@ -61,13 +62,15 @@ VertexAttributes carry_attributes(const TriangleMesh& template_mesh,
         const Eigen::RowVector3i corners = template_mesh.F.row(under.face);
         int nearest = 0;
         under.barycentric.maxCoeff(&nearest);
-        for (int c = 0; c < carried.colors.cols() && carried.colors.rows() > 0; ++c) {
-            double value = 0;
-            for (int k = 0; k < 3; ++k) {
-                value += under.barycentric[k] * attributes.colors(corners[k], c);
+        if (has_colors) {
+            for (int c = 0; c < 3; ++c) {
+                double value = 0;
+                for (int k = 0; k < 3; ++k) {
+                    value += under.barycentric[k] * attributes.colors(corners[k], c);
+                }
+                carried.colors(t, c) =
+                    static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0, 255.0)));
             }
-            carried.colors(t, c) =
-                static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0, 255.0)));
         }
         for (std::size_t s = 0; s < carried.scalars.size(); ++s) {
             const Eigen::VectorXd& values = attributes.scalars[s].second;

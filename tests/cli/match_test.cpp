@@ -27,14 +27,27 @@ namespace {
 using test::quoted;
 using test::run_genflow;
 
+// A limb and a finer limb moved rigidly: a pair whose answer is known (the template moved as
+// the target was).
+struct MovedLimbs {
+    TriangleMesh template_mesh = make_limb(3);
+    TriangleMesh target_at_rest = make_limb(4, 5);
+    Similarity motion;
+    TriangleMesh target;
+
+    MovedLimbs(const Eigen::AngleAxisd& rotation, const Eigen::Vector3d& translation) {
+        motion.rotation = rotation.toRotationMatrix();
+        motion.translation = translation;
+        target = TriangleMesh{motion.apply(target_at_rest.V), target_at_rest.F};
+    }
+};
+
 TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     const test::TemporaryDirectory directory;
-    const TriangleMesh template_mesh = make_limb(3);
-    TriangleMesh target = make_limb(4, 5);
-    Similarity motion;
-    motion.rotation = Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
-    motion.translation = Eigen::Vector3d(1, 2, 3);
-    target.V = motion.apply(target.V);
+    const MovedLimbs pair(Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitY()), {1, 2, 3});
+    const TriangleMesh& template_mesh = pair.template_mesh;
+    const TriangleMesh& target = pair.target;
+    const Similarity& motion = pair.motion;
     VertexAttributes painted;  // the template's colours go with it onto the target
     painted.colors = VertexColors::Zero(template_mesh.V.rows(), 3);
     painted.colors.col(2) = (template_mesh.V.col(0).array() > 0).cast<std::uint8_t>() * 200;
@@ -125,13 +138,10 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
 // whole from the nearest corner, a value interpolated.
 TEST(MatchCli, TransferCarriesTheTemplatesAttributesToTheTarget) {
     const test::TemporaryDirectory directory;
-    const TriangleMesh limb = make_limb(3);
-    TriangleMesh target = make_limb(4, 5);
-    Similarity motion;
-    motion.rotation = Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    motion.translation = Eigen::Vector3d(2, 0, 1);
-    const Eigen::MatrixX3d target_at_rest = target.V;
-    target.V = motion.apply(target.V);
+    const MovedLimbs pair(Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitZ()), {2, 0, 1});
+    const TriangleMesh& limb = pair.template_mesh;
+    const TriangleMesh& target = pair.target;
+    const Eigen::MatrixX3d& target_at_rest = pair.target_at_rest.V;
     const Eigen::Index axis = 0;
     const double middle = limb.V.col(axis).mean();
     VertexAttributes painted;
