@@ -6,8 +6,8 @@ packages=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libsuitesparse-dev libnanoflann-dev libmeshoptimizer-dev libcli11-dev nlohmann-json3-dev
   libspectra-dev
-  libtinygltf-dev
-  libgtest-dev libbenchmark-dev
+  libtinygltf-dev libjs-three
+  libgtest-dev libbenchmark-dev libpng-dev chromium
   libopenblas0-pthread
   clang clang-format libfuzzer-14-dev
 )

@@ -2,7 +2,8 @@
 // genflow demo [--output-dir DIR]: the built-in default job, on shapes genflow generates itself
 // (no input needed). It matches an articulated template onto another pose of the same shape,
 // sampled differently and moved rigidly, with the quasi-articulated prior, and writes the
-// inputs, the part files, the deformed template, the correspondences and a JSON summary.
+// inputs, the part files, the deformed template, the correspondences, a JSON summary and an
+// HTML report.
 #include <Eigen/Geometry>
 #include <cstdio>
 #include <filesystem>
@@ -97,6 +98,7 @@ void run_demo(const DemoOptions& options) {
     job.output = directory / "matched.ply";
     job.correspondence = directory / "correspondence.txt";
     job.summary = directory / "summary.json";
+    job.report = directory / "report.html";
     job.ground_truth = motion.apply(bend_at_joints(template_mesh.V, pose));
     job.options.prior = MatchPrior::Articulated;
     job.options.parts = parts;
@@ -115,7 +117,8 @@ void run_demo(const DemoOptions& options) {
         "  area turned over (faces facing the wrong way):         %.2f %%\n"
         "  surface distance to the target, mean / Hausdorff:     %.3f %% / %.3f %%\n\n"
         "wrote %s/: template.ply, target.ply, limb_parts.json, limb_part_labels.txt,\n"
-        "           matched.ply (the deformed template), correspondence.txt, summary.json\n"
+        "           matched.ply (the deformed template), correspondence.txt, summary.json,\n"
+        "           report.html (open it in a browser: the meshes coloured by the error)\n"
         "the same match from the command line:\n"
         "  genflow match %s/template.ply %s/target.ply -o matched.ply --parts %s/limb_parts.json\n",
         static_cast<long>(template_mesh.V.rows()), summary["seconds"].get<double>(),

@@ -16,6 +16,7 @@
 #include "genflow/spatial/surface_distance.h"
 #include "mesh_summary.h"
 #include "number_checks.h"
+#include "reports.h"
 
 namespace genflow::cli {
 
@@ -28,6 +29,7 @@ struct DistanceOptions {
     double epsilon = 0;   // 0: the mean edge length of B
     std::string colored;  // where A goes with its distance to B per vertex; empty: nowhere
     double scale = 0;     // the colour scale's top; 0: the Hausdorff distance A → B
+    std::string report;   // an HTML page showing both meshes coloured; empty: none
     bool json = false;
 };
 
@@ -69,9 +71,66 @@ nlohmann::json one_sided_json(const OneSidedDistance& d) {
             {"rms_error_bound", d.rms_error_bound}};
 }
 
+// What the distances are, as --json prints them.
+nlohmann::json distance_summary(const DistanceOptions& options, const SurfaceDistances& d,
+                                double diagonal, double epsilon, double d_H,
+                                const ColorScale& scale) {
+    nlohmann::json summary = {
+        {"a", options.a},
+        {"b", options.b},
+        {"hausdorff", d.hausdorff},
+        {"hausdorff_upper_bound", d.hausdorff_upper_bound},
+        {"mean", d.mean},
+        {"rms", d.rms},
+        {"a_to_b", one_sided_json(d.a_to_b)},
+        {"b_to_a", one_sided_json(d.b_to_a)},
+        {"bbox_diagonal", diagonal},
+        {"pseudo_hausdorff", {{"value", d_H}, {"alpha", options.alpha}, {"epsilon", epsilon}}},
+    };
+    if (!options.colored.empty()) {
+        summary["colored"] = {{"file", options.colored},
+                              {"property", "distance"},
+                              {"color_map", "viridis"},
+                              {"scale", {0.0, scale.top}}};
+    }
+    if (!options.report.empty()) {
+        summary["report"] = options.report;
+    }
+    return summary;
+}
+
+void print_distance_text(const DistanceOptions& options, const SurfaceDistances& d,
+                         const nlohmann::json& summary, const ColorScale& scale) {
+    std::printf("%s -> %s: Hausdorff %.6g (<= %.6g), mean %.6g, rms %.6g\n", options.a.c_str(),
+                options.b.c_str(), d.a_to_b.hausdorff, d.a_to_b.hausdorff_upper_bound,
+                d.a_to_b.mean, d.a_to_b.rms);
+    std::printf("%s -> %s: Hausdorff %.6g (<= %.6g), mean %.6g, rms %.6g\n", options.b.c_str(),
+                options.a.c_str(), d.b_to_a.hausdorff, d.b_to_a.hausdorff_upper_bound,
+                d.b_to_a.mean, d.b_to_a.rms);
+    std::printf("symmetric: Hausdorff %.6g (%.4g%% of the bbox diagonal), mean %.6g, rms %.6g\n",
+                d.hausdorff, 100 * d.hausdorff / summary["bbox_diagonal"].get<double>(), d.mean,
+                d.rms);
+    const nlohmann::json& pseudo = summary["pseudo_hausdorff"];
+    std::printf("pseudo-Hausdorff d_H (alpha %g, epsilon %.6g): %.6g\n", options.alpha,
+                pseudo["epsilon"].get<double>(), pseudo["value"].get<double>());
+    if (!options.colored.empty()) {
+        std::printf(
+            "%s: A with its distance to B per vertex (property \"distance\"), coloured on "
+            "viridis from 0 (dark purple) to %.6g (yellow; %s)\n",
+            printable(options.colored).c_str(), scale.top, scale.meaning);
+    }
+    if (!options.report.empty()) {
+        std::printf("%s: both meshes coloured by their distance, to look at in a browser\n",
+                    printable(options.report).c_str());
+    }
+}
+
 void run_distance(const DistanceOptions& options) {
     if (!options.colored.empty()) {
         check_mesh_output(options.colored);
+    }
+    if (!options.report.empty()) {
+        check_report_output(options.report);
     }
     const LoadedMesh a = load_mesh(options.a);
     const LoadedMesh b = load_mesh(options.b);
@@ -85,47 +144,23 @@ void run_distance(const DistanceOptions& options) {
     const double d_H = pseudo.value(a.mesh);
     const double diagonal = std::max(bounding_box_diagonal(a.mesh), bounding_box_diagonal(b.mesh));
     const ColorScale scale = color_scale(options, d, diagonal);
+    const nlohmann::json summary = distance_summary(options, d, diagonal, epsilon, d_H, scale);
+    OutputTransaction outputs;
     if (!options.colored.empty()) {
         write_colored(options.colored, a.mesh, b.mesh, scale);
     }
+    if (!options.report.empty()) {
+        // Both directions on one scale: --scale, else the symmetric Hausdorff distance (the
+        // larger one-sided one).
+        const double top = options.scale > 0 ? options.scale : d.hausdorff;
+        write_html_report(options.report, distance_report(a.mesh, b.mesh, top, summary));
+    }
+    outputs.commit();
     if (options.json) {
-        nlohmann::json summary = {
-            {"a", options.a},
-            {"b", options.b},
-            {"hausdorff", d.hausdorff},
-            {"hausdorff_upper_bound", d.hausdorff_upper_bound},
-            {"mean", d.mean},
-            {"rms", d.rms},
-            {"a_to_b", one_sided_json(d.a_to_b)},
-            {"b_to_a", one_sided_json(d.b_to_a)},
-            {"bbox_diagonal", diagonal},
-            {"pseudo_hausdorff", {{"value", d_H}, {"alpha", options.alpha}, {"epsilon", epsilon}}},
-        };
-        if (!options.colored.empty()) {
-            summary["colored"] = {{"file", options.colored},
-                                  {"property", "distance"},
-                                  {"color_map", "viridis"},
-                                  {"scale", {0.0, scale.top}}};
-        }
         std::cout << summary.dump(2) << '\n';
         return;
     }
-    std::printf("%s -> %s: Hausdorff %.6g (<= %.6g), mean %.6g, rms %.6g\n", options.a.c_str(),
-                options.b.c_str(), d.a_to_b.hausdorff, d.a_to_b.hausdorff_upper_bound,
-                d.a_to_b.mean, d.a_to_b.rms);
-    std::printf("%s -> %s: Hausdorff %.6g (<= %.6g), mean %.6g, rms %.6g\n", options.b.c_str(),
-                options.a.c_str(), d.b_to_a.hausdorff, d.b_to_a.hausdorff_upper_bound,
-                d.b_to_a.mean, d.b_to_a.rms);
-    std::printf("symmetric: Hausdorff %.6g (%.4g%% of the bbox diagonal), mean %.6g, rms %.6g\n",
-                d.hausdorff, 100 * d.hausdorff / diagonal, d.mean, d.rms);
-    std::printf("pseudo-Hausdorff d_H (alpha %g, epsilon %.6g): %.6g\n", options.alpha, epsilon,
-                d_H);
-    if (!options.colored.empty()) {
-        std::printf(
-            "%s: A with its distance to B per vertex (property \"distance\"), coloured on "
-            "viridis from 0 (dark purple) to %.6g (yellow; %s)\n",
-            printable(options.colored).c_str(), scale.top, scale.meaning);
-    }
+    print_distance_text(options, d, summary, scale);
 }
 
 }  // namespace
@@ -153,6 +188,9 @@ void register_distance_command(CLI::App& app) {
                      "The distance coloured yellow (default: the Hausdorff distance A -> B), to "
                      "put several results on one scale")
         ->check(positive_length());
+    command->add_option("--report", options->report,
+                        "Write an HTML page showing A and B in a 3D view, each coloured by its "
+                        "distance to the other, and the numbers (.html)");
     command->add_flag("--json", options->json, "Print one JSON object instead of text");
     command->callback([options] { run_distance(*options); });
 }

@@ -11,6 +11,8 @@
 #include "commands.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
+#include "genflow/version.h"
+#include "reports.h"
 
 namespace {
 
@@ -50,8 +52,9 @@ int main(int argc, char** argv) {
     CLI::App app{
         "genflow: generalized gradient flows of triangle meshes (Eckstein et al., SGP 2007)",
         "genflow"};
-    app.set_version_flag("--version", "genflow 0.1.0");
+    app.set_version_flag("--version", "genflow " + std::string(genflow::kVersion));
     genflow::remove_temporaries_on_signals();
+    set_command_line(argc, argv);
     app.require_subcommand(1);
     register_info_command(app);
     register_smooth_command(app);

@@ -16,6 +16,7 @@
 #include "match_flags.h"
 #include "match_job.h"
 #include "number_checks.h"
+#include "reports.h"
 
 namespace genflow::cli {
 
@@ -34,6 +35,7 @@ struct MatchCommandOptions {
     int frame_every = 1;
     std::string summary;
     std::string colored;
+    std::string report;
     std::string ground_truth;
     std::string landmarks;
     MatchFlags flags;
@@ -69,6 +71,9 @@ void run_match(const MatchCommandOptions& options) {
     check_mesh_output(options.output);
     if (!options.colored.empty()) {
         check_mesh_output(options.colored);
+    }
+    if (!options.report.empty()) {
+        check_report_output(options.report);
     }
     // Every output checked before any work, so that a typo costs nothing.
     for (const std::string& output : {options.output, options.correspondence, options.summary}) {
@@ -114,6 +119,9 @@ void run_match(const MatchCommandOptions& options) {
     }
     if (!options.colored.empty()) {
         job.colored = options.colored;
+    }
+    if (!options.report.empty()) {
+        job.report = options.report;
     }
     job.options = resolved(options.flags, !options.parts.empty());
     const std::string prior = to_string(job.options.prior);
@@ -177,6 +185,9 @@ void run_match(const MatchCommandOptions& options) {
             "(yellow)\n",
             printable(options.colored).c_str(), colored["property"].get<std::string>().c_str(),
             colored["scale"][1].get<double>());
+    }
+    if (!options.report.empty()) {
+        std::printf("%s: the match to look at in a browser\n", printable(options.report).c_str());
     }
     if (summary["second_opinion"].get<bool>()) {
         std::printf(
@@ -250,6 +261,9 @@ void register_match_command(CLI::App& app) {
     command->add_option("--colored", options->colored,
                         "Write the deformed template coloured per vertex on viridis by its error "
                         "(with --ground-truth) or its distance to the target (.ply, .obj, .off)");
+    command->add_option("--report", options->report,
+                        "Write an HTML page showing the match: the meshes in a 3D view (coloured "
+                        "by distance or error), d_H per step of each level, the summary (.html)");
     command->add_option(
         "--ground-truth", options->ground_truth,
         "The target's surface sampled as the template (same vertex count and order): report the "

@@ -17,6 +17,7 @@
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/surface_distance.h"
 #include "progress_bar.h"
+#include "reports.h"
 
 namespace genflow::cli {
 
@@ -159,6 +160,10 @@ nlohmann::json run_match_job(MatchJob job) {
     if (job.correspondence) {
         write_correspondences(*job.correspondence, match_correspondence(result, job.target));
         summary["correspondence"] = job.correspondence->string();
+    }
+    if (job.report) {
+        summary["report"] = job.report->string();
+        write_html_report(*job.report, match_report(job, result, values, summary));
     }
     if (job.summary) {
         write_file_atomically(*job.summary, summary.dump(2) + "\n");

@@ -29,6 +29,8 @@ struct MatchJob {
     /// The deformed template coloured by its error (with a ground truth) or its distance to the
     /// target, per vertex.
     std::optional<std::filesystem::path> colored;
+    /// An HTML page showing the run (match_report()).
+    std::optional<std::filesystem::path> report;
     /// Known positions of the template's vertices on the target (a generated pair): the
     /// summary then reports the correspondence error.
     std::optional<Eigen::MatrixX3d> ground_truth;

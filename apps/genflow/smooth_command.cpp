@@ -17,6 +17,7 @@
 #include "mesh_summary.h"
 #include "number_checks.h"
 #include "progress_bar.h"
+#include "reports.h"
 
 namespace genflow::cli {
 
@@ -43,6 +44,7 @@ struct SmoothCommandOptions {
     bool json = false;
     std::string frames;
     int frame_every = 1;
+    std::string report;
 };
 
 // "+1.234%".
@@ -52,8 +54,67 @@ std::string signed_percent(double value) {
     return text;
 }
 
+// The run in numbers: its flow, and the area and enclosed volume before and after (the change
+// of volume only for a closed surface, whose volume means something).
+nlohmann::json smooth_summary(const SmoothCommandOptions& options, const LoadedMesh& loaded,
+                              const FlowResult& result) {
+    const double volume_before = enclosed_volume(loaded.mesh);
+    const double volume_after = enclosed_volume(result.mesh);
+    const bool closed = loaded.report.closed() && volume_before != 0;
+    const double volume_change =
+        closed ? 100 * (std::abs(volume_after) - std::abs(volume_before)) / std::abs(volume_before)
+               : 0;
+    return {
+        {"input", options.input},
+        {"output", options.output},
+        {"method", options.method},
+        {"status", to_string(result.status)},
+        {"steps", result.steps},
+        {"seconds", result.seconds},
+        {"area_before", surface_area(loaded.mesh)},
+        {"area_after", surface_area(result.mesh)},
+        {"volume_before", volume_before},
+        {"volume_after", volume_after},
+        {"volume_change_percent", closed ? nlohmann::json(volume_change) : nlohmann::json(nullptr)},
+        {"closed", loaded.report.closed()},
+        {"energy_rose", result.energy_rose()},
+        {"energy", result.energy},
+    };
+}
+
+void print_smooth_text(const SmoothCommandOptions& options, const FlowResult& result,
+                       const nlohmann::json& summary) {
+    if (result.energy_rose()) {
+        std::cerr << "warning: " << printable(options.input) << ": the flow's energy rose ("
+                  << result.energy.front() << " -> " << result.energy.back()
+                  << "): the time step is too large for this metric; try a smaller --dt"
+                  << (options.method == "fairing" || options.method == "fairing2"
+                          ? " or a larger --lambda"
+                          : "")
+                  << '\n';
+    }
+    const nlohmann::json& volume_change = summary["volume_change_percent"];
+    const std::string volume_change_text =
+        volume_change.is_null() ? " (open surface)"
+                                : " (" + signed_percent(volume_change.get<double>()) + ")";
+    std::printf(
+        "smooth: %s, %d steps (%s) in %.2f s; area %.6g -> %.6g; volume %.6g -> %.6g%s; "
+        "wrote %s\n",
+        options.method.c_str(), result.steps, to_string(result.status), result.seconds,
+        summary["area_before"].get<double>(), summary["area_after"].get<double>(),
+        summary["volume_before"].get<double>(), summary["volume_after"].get<double>(),
+        volume_change_text.c_str(), printable(options.output).c_str());
+    if (!options.report.empty()) {
+        std::printf("%s: the smoothing to look at in a browser\n",
+                    printable(options.report).c_str());
+    }
+}
+
 void run_smooth(SmoothCommandOptions options) {
     check_mesh_output(options.output);
+    if (!options.report.empty()) {
+        check_report_output(options.report);
+    }
     const LoadedMesh loaded = load_mesh(options.input);
     if (!options.json) {
         print_warnings(loaded);
@@ -82,56 +143,20 @@ void run_smooth(SmoothCommandOptions options) {
         throw SolverError("smoothing failed after " + std::to_string(result.steps) + " steps (" +
                           to_string(result.status) + "): " + result.message);
     }
+    const nlohmann::json summary = smooth_summary(options, loaded, result);
+    // All or none, as a match's outputs.
+    OutputTransaction outputs;
     write_mesh_with(options.output, result.mesh, carried_attributes(loaded, options.json),
                     options.json);
-
-    const double area_before = surface_area(loaded.mesh);
-    const double area_after = surface_area(result.mesh);
-    const double volume_before = enclosed_volume(loaded.mesh);
-    const double volume_after = enclosed_volume(result.mesh);
-    // Only a closed surface encloses a volume to compare (an open one's may be zero).
-    const bool closed = loaded.report.closed() && volume_before != 0;
-    const double volume_change =
-        closed ? 100 * (std::abs(volume_after) - std::abs(volume_before)) / std::abs(volume_before)
-               : 0;
+    if (!options.report.empty()) {
+        write_html_report(options.report, smooth_report(loaded.mesh, result, summary));
+    }
+    outputs.commit();
     if (options.json) {
-        const nlohmann::json summary = {
-            {"input", options.input},
-            {"output", options.output},
-            {"method", options.method},
-            {"status", to_string(result.status)},
-            {"steps", result.steps},
-            {"seconds", result.seconds},
-            {"area_before", area_before},
-            {"area_after", area_after},
-            {"volume_before", volume_before},
-            {"volume_after", volume_after},
-            {"volume_change_percent",
-             closed ? nlohmann::json(volume_change) : nlohmann::json(nullptr)},
-            {"closed", loaded.report.closed()},
-            {"energy_rose", result.energy_rose()},
-            {"energy", result.energy},
-        };
         std::cout << summary.dump(2) << '\n';
         return;
     }
-    if (result.energy_rose()) {
-        std::cerr << "warning: " << printable(options.input) << ": the flow's energy rose ("
-                  << result.energy.front() << " -> " << result.energy.back()
-                  << "): the time step is too large for this metric; try a smaller --dt"
-                  << (options.method == "fairing" || options.method == "fairing2"
-                          ? " or a larger --lambda"
-                          : "")
-                  << '\n';
-    }
-    const std::string volume_change_text =
-        closed ? " (" + signed_percent(volume_change) + ")" : " (open surface)";
-    std::printf(
-        "smooth: %s, %d steps (%s) in %.2f s; area %.6g -> %.6g; volume %.6g -> %.6g%s; "
-        "wrote %s\n",
-        options.method.c_str(), result.steps, to_string(result.status), result.seconds, area_before,
-        area_after, volume_before, volume_after, volume_change_text.c_str(),
-        printable(options.output).c_str());
+    print_smooth_text(options, result, summary);
 }
 
 }  // namespace
@@ -184,6 +209,9 @@ void register_smooth_command(CLI::App& app) {
     command->add_option("--frame-every", options->frame_every, "k for --frames")
         ->check(positive_number())
         ->capture_default_str();
+    command->add_option("--report", options->report,
+                        "Write an HTML page showing the smoothing: input and result in a 3D view "
+                        "(coloured by how far each vertex moved), the energy per step (.html)");
     command->callback([options] { run_smooth(*options); });
 }
 

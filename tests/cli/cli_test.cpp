@@ -228,7 +228,7 @@ TEST(Cli, DemoMatchesTheGeneratedPairAndWritesEverything) {
     ASSERT_EQ(result.exit_code, 0) << result.err;
     for (const char* name :
          {"template.ply", "target.ply", "limb_parts.json", "limb_part_labels.txt", "matched.ply",
-          "correspondence.txt", "summary.json"}) {
+          "correspondence.txt", "summary.json", "report.html"}) {
         EXPECT_TRUE(std::filesystem::exists(out / name)) << name;
     }
     const auto summary = nlohmann::json::parse(std::ifstream(out / "summary.json"));

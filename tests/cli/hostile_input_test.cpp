@@ -140,6 +140,10 @@ TEST_F(HostileInput, EveryRefusalIsOneLineWithItsExitCodeAndChangesNoFile) {
         {"distance s.ply s.ply --colored nodir/c.ply", 1,
          "c.ply: cannot be written: the directory"},
         {"distance s.ply s.ply --colored c.xyz", 2, "c.xyz: cannot write this format"},
+        {"smooth s.ply o.ply --report r.txt", 2, "r.txt: a report is an HTML page"},
+        {"distance s.ply s.ply --report nodir/r.html", 1,
+         "r.html: cannot be written: the directory"},
+        {"match limb.ply limb.ply -o o.ply --report r.ply", 2, "r.ply: a report is an HTML page"},
     };
     const auto before = contents();
     for (const Refusal& refusal : refusals) {
