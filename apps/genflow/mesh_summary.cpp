@@ -34,7 +34,16 @@ std::string topology_words(const ValidationReport& r) {
     return words;
 }
 
-// What the file gives per vertex: {"normals", "colors", "values": [names]}.
+// Where the file's texture coordinates are: "per vertex", "per corner" or null.
+nlohmann::json texture_json(const VertexAttributes& attributes) {
+    if (attributes.corner_uv_faces.rows() > 0) {
+        return "per corner";
+    }
+    return attributes.uvs.rows() > 0 ? nlohmann::json("per vertex") : nlohmann::json(nullptr);
+}
+
+// What the file gives per vertex: {"normals", "colors", "values": [names],
+// "texture_coordinates"}.
 nlohmann::json attributes_json(const VertexAttributes& attributes) {
     nlohmann::json names = nlohmann::json::array();
     for (const auto& [name, values] : attributes.scalars) {
@@ -42,7 +51,8 @@ nlohmann::json attributes_json(const VertexAttributes& attributes) {
     }
     return {{"normals", attributes.normals.rows() > 0},
             {"colors", attributes.colors.rows() > 0},
-            {"values", names}};
+            {"values", names},
+            {"texture_coordinates", texture_json(attributes)}};
 }
 
 // The same as words: "normals, colours, quality".
@@ -57,6 +67,9 @@ std::string attribute_words(const VertexAttributes& attributes) {
     }
     for (const auto& [name, values] : attributes.scalars) {
         add(name);
+    }
+    if (attributes.uvs.rows() > 0) {
+        add("texture coordinates");
     }
     return words;
 }
@@ -124,6 +137,9 @@ std::string mesh_summary_text(const LoadedMesh& loaded) {
         << "  bbox diagonal " << m.bbox_diagonal << ", mean edge length " << m.mean_edge << '\n';
     if (const std::string words = attribute_words(loaded.attributes); !words.empty()) {
         out << "  per vertex: " << words << '\n';
+    }
+    if (loaded.attributes.corner_uv_faces.rows() > 0) {
+        out << "  per face corner: texture coordinates\n";
     }
     return out.str();
 }

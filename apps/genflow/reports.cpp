@@ -158,7 +158,7 @@ Report smooth_report(const TriangleMesh& input, const FlowResult& result,
     VertexAttributes moved;
     moved.scalars.emplace_back("displacement", (result.mesh.V - input.V).rowwise().norm());
     report.meshes = {{"input", input, {}, true}, {"smoothed", result.mesh, moved, true}};
-    report.default_coloring = "displacement";
+    report.default_coloring = "";  // plain: the shading shows what smoothing changed
     report.plots = {{"Energy per step", "step", "energy", {{"energy", 0, result.energy}}, true}};
     report.tables = {summary_table(summary)};
     report.details = summary.dump(2);

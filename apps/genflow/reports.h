@@ -30,8 +30,8 @@ void check_report_output(const std::string& path);
 [[nodiscard]] Report match_report(const MatchJob& job, const MatchResult& result,
                                   const VertexAttributes& values, const nlohmann::json& summary);
 
-/// A smoothing: the input and the smoothed mesh (coloured by how far each vertex moved), the
-/// flow's energy per step, the summary.
+/// A smoothing: the input and the smoothed mesh (plain, or coloured by how far each vertex
+/// moved), the flow's energy per step, the summary.
 [[nodiscard]] Report smooth_report(const TriangleMesh& input, const FlowResult& result,
                                    const nlohmann::json& summary);
 

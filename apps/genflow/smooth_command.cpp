@@ -211,7 +211,8 @@ void register_smooth_command(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--report", options->report,
                         "Write an HTML page showing the smoothing: input and result in a 3D view "
-                        "(coloured by how far each vertex moved), the energy per step (.html)");
+                        "(plain or coloured by how far each vertex moved), the energy per step "
+                        "(.html)");
     command->callback([options] { run_smooth(*options); });
 }
 

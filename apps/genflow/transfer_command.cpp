@@ -38,6 +38,14 @@ VertexAttributes merged(const LoadedMesh& target, VertexAttributes carried) {
         }
         result.colors = std::move(carried.colors);
     }
+    if (carried.uvs.rows() > 0) {
+        if (result.uvs.rows() > 0 || result.corner_uv_faces.rows() > 0) {
+            replaced("texture coordinates");
+        }
+        result.uvs = std::move(carried.uvs);
+        result.corner_uvs.resize(0, 2);
+        result.corner_uv_faces.resize(0, 3);
+    }
     for (auto& [name, values] : carried.scalars) {
         std::erase_if(result.scalars, [&, &name = name](const auto& own) {
             const bool same = own.first == name;
@@ -51,14 +59,36 @@ VertexAttributes merged(const LoadedMesh& target, VertexAttributes carried) {
     return result;
 }
 
+// "vertex colours, values and texture coordinates", as many as the source has.
+std::string carried_words(const VertexAttributes& given) {
+    std::vector<std::string> kinds;
+    if (given.colors.rows() > 0) {
+        kinds.emplace_back("colours");
+    }
+    if (!given.scalars.empty()) {
+        kinds.emplace_back("values");
+    }
+    if (given.uvs.rows() > 0 || given.corner_uv_faces.rows() > 0) {
+        kinds.emplace_back("texture coordinates");
+    }
+    std::string words = "vertex";
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+        words += (k == 0 ? " " : k + 1 == kinds.size() ? " and " : ", ") + kinds[k];
+    }
+    return words;
+}
+
 void run_transfer(const TransferOptions& options) {
     check_mesh_output(options.output);
     const LoadedMesh source = load_mesh(options.source);
     const LoadedMesh target = load_mesh(options.target);
     print_warnings(source);
     print_warnings(target);
-    if (source.attributes.colors.rows() == 0 && source.attributes.scalars.empty()) {
-        throw IoError(options.source + ": no vertex colours or values to transfer");
+    const VertexAttributes& given = source.attributes;
+    if (given.colors.rows() == 0 && given.scalars.empty() && given.uvs.rows() == 0 &&
+        given.corner_uv_faces.rows() == 0) {
+        throw IoError(options.source +
+                      ": no vertex colours, values or texture coordinates to transfer");
     }
     const std::vector<SurfacePoint> correspondence =
         read_correspondences(options.correspondence, target.mesh, source.mesh.V.rows());
@@ -66,8 +96,7 @@ void run_transfer(const TransferOptions& options) {
         carry_attributes(source.mesh, source.attributes, target.mesh, correspondence);
     write_mesh_with(options.output, target.mesh, merged(target, std::move(carried)), false);
     std::printf("transfer: %s's %s onto the %ld vertices of %s; wrote %s\n",
-                printable(options.source).c_str(),
-                source.attributes.colors.rows() > 0 ? "vertex colours and values" : "vertex values",
+                printable(options.source).c_str(), carried_words(given).c_str(),
                 static_cast<long>(target.mesh.V.rows()), printable(options.target).c_str(),
                 printable(options.output).c_str());
 }
@@ -78,8 +107,9 @@ void register_transfer_command(CLI::App& app) {
     auto options = std::make_shared<TransferOptions>();
     auto* command = app.add_subcommand(
         "transfer",
-        "Carry a template's per-vertex colours and values (labels taken from the nearest "
-        "corner, others interpolated) to the target a match put it on, through the match's "
+        "Carry a template's per-vertex colours, values and texture coordinates (labels taken "
+        "from the nearest corner, others interpolated) to the target a match put it on, through "
+        "the match's "
         "--correspondence file");
     command->add_option("source", options->source, "The template, with its vertex attributes")
         ->required();

@@ -100,6 +100,16 @@ std::string encode_glb(const TriangleMesh& mesh, const VertexAttributes& attribu
         }
         primitive.attributes["COLOR_0"] = add_vec3(model, linear, false);
     }
+    if (attributes.uvs.rows() > 0) {
+        // glTF's texture origin is the image's top left, OBJ's and PLY's its bottom left.
+        std::vector<float> uvs;
+        for (Eigen::Index i = 0; i < attributes.uvs.rows(); ++i) {
+            uvs.push_back(static_cast<float>(attributes.uvs(i, 0)));
+            uvs.push_back(static_cast<float>(1 - attributes.uvs(i, 1)));
+        }
+        primitive.attributes["TEXCOORD_0"] = add_accessor(
+            model, uvs, TINYGLTF_TYPE_VEC2, uvs.size() / 2, TINYGLTF_TARGET_ARRAY_BUFFER);
+    }
     for (const auto& [name, values] : attributes.scalars) {
         std::vector<float> floats(values.data(), values.data() + values.size());
         primitive.attributes[attribute_name(name)] = add_accessor(

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "genflow/io/read_file.h"
+#include "io/corner_data.h"
 
 namespace genflow::detail {
 
@@ -20,11 +21,7 @@ void MeshBuilder::add_polygon(const std::vector<std::int64_t>& corners) {
     if (corners.size() > 3) {
         ++split_polygons_;
     }
-    for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
-        triangles_.push_back(static_cast<int>(corners[0]));
-        triangles_.push_back(static_cast<int>(corners[k]));
-        triangles_.push_back(static_cast<int>(corners[k + 1]));
-    }
+    append_fan(corners, triangles_);
 }
 
 std::int64_t MeshBuilder::checked_index(double value) const {

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Stanford PLY 1.0, ascii and binary in either byte order. We keep the x, y, z properties of
 // the `vertex` element and the vertex-index list of the `face` element, and, when asked, the
-// vertex element's other single properties (normals, colours, named values); every other
+// vertex element's other single properties (normals, colours, texture coordinates, named
+// values) and the face element's `texcoord` list (texture coordinates per corner); every other
 // element and property is skipped by its declared type. Debian ships no PLY parser library (happly,
 // tinyply and rply are not packaged), so this one is ours and is fuzzed (fuzz/ply_fuzz.cpp).
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <optional>
 #include <string>
 
+#include "io/corner_data.h"
 #include "io/readers.h"
 
 namespace genflow::detail {
@@ -266,6 +268,15 @@ int normal_axis(std::string_view name) {
     return -1;
 }
 
+// A vertex property holding a texture coordinate: u, v; s, t; or texture_u, texture_v
+// (MeshLab), as Blender and MeshLab read them.
+int texture_axis(std::string_view name) {
+    if (name == "u" || name == "s" || name == "texture_u") {
+        return 0;
+    }
+    return name == "v" || name == "t" || name == "texture_v" ? 1 : -1;
+}
+
 // A vertex property holding a colour channel: red, green, blue, or diffuse_red, … (Blender).
 int color_channel(std::string_view name) {
     if (name.starts_with("diffuse_")) {
@@ -279,14 +290,17 @@ int color_channel(std::string_view name) {
 struct VertexExtras {
     std::array<int, 3> normal = {-1, -1, -1};
     std::array<int, 3> color = {-1, -1, -1};
+    std::array<int, 2> uv = {-1, -1};
     bool float_color = false;  // 0–1 floats rather than 0–255 integers
     std::vector<int> values;   // every other single property: a named value per vertex
     std::vector<Eigen::Vector3d> normals;
     std::vector<std::array<std::uint8_t, 3>> colors;
+    std::vector<Eigen::Vector2d> uvs;
     std::vector<std::vector<double>> value_rows;  // per value, per vertex
 
-    static bool complete(const std::array<int, 3>& triple) {
-        return std::ranges::none_of(triple, [](int p) { return p < 0; });
+    template <std::size_t N>
+    static bool complete(const std::array<int, N>& indices) {
+        return std::ranges::none_of(indices, [](int p) { return p < 0; });
     }
 };
 
@@ -301,21 +315,28 @@ VertexExtras vertex_extras(const Element& element, const ParseContext& context) 
         } else if (const int channel = color_channel(property.name); channel >= 0) {
             extras.color[static_cast<std::size_t>(channel)] = p;
             extras.float_color = !is_integer_type(property.type);
+        } else if (const int coordinate = texture_axis(property.name);
+                   coordinate >= 0 && extras.uv[static_cast<std::size_t>(coordinate)] < 0) {
+            extras.uv[static_cast<std::size_t>(coordinate)] = p;
         } else if (property.name != "x" && property.name != "y" && property.name != "z") {
             extras.values.push_back(p);
         }
     }
-    // A lone component is a value of its own, not part of a normal or a colour.
-    for (std::array<int, 3>* triple : {&extras.normal, &extras.color}) {
-        if (!VertexExtras::complete(*triple)) {
-            for (const int p : *triple) {
+    // A lone component is a value of its own, not part of a normal, a colour or a texture
+    // coordinate.
+    const auto keep_lone = [&](auto& indices) {
+        if (!VertexExtras::complete(indices)) {
+            for (const int p : indices) {
                 if (p >= 0) {
                     extras.values.push_back(p);
                 }
             }
-            triple->fill(-1);
+            indices.fill(-1);
         }
-    }
+    };
+    keep_lone(extras.normal);
+    keep_lone(extras.color);
+    keep_lone(extras.uv);
     std::ranges::sort(extras.values);
     extras.value_rows.resize(extras.values.size());
     return extras;
@@ -341,6 +362,10 @@ void keep_extras(VertexExtras& extras, const std::vector<double>& values) {
         }
         extras.colors.push_back(color);
     }
+    if (VertexExtras::complete(extras.uv)) {
+        extras.uvs.emplace_back(values[static_cast<std::size_t>(extras.uv[0])],
+                                values[static_cast<std::size_t>(extras.uv[1])]);
+    }
     for (std::size_t k = 0; k < extras.values.size(); ++k) {
         extras.value_rows[k].push_back(values[static_cast<std::size_t>(extras.values[k])]);
     }
@@ -358,6 +383,10 @@ void store_extras(const VertexExtras& extras, const Element& vertex, VertexAttri
                 extras.colors[i][c];
         }
     }
+    out.uvs.resize(static_cast<Eigen::Index>(extras.uvs.size()), 2);
+    for (std::size_t i = 0; i < extras.uvs.size(); ++i) {
+        out.uvs.row(static_cast<Eigen::Index>(i)) = extras.uvs[i].transpose();
+    }
     out.scalars.clear();
     for (std::size_t k = 0; k < extras.values.size(); ++k) {
         const std::vector<double>& rows = extras.value_rows[k];
@@ -366,6 +395,58 @@ void store_extras(const VertexExtras& extras, const Element& vertex, VertexAttri
             Eigen::Map<const Eigen::VectorXd>(rows.data(), static_cast<Eigen::Index>(rows.size())));
     }
 }
+
+// A face element's `texcoord` list (MeshLab's texture coordinates per corner: u, v for each
+// of the face's corners), kept beside the fan split of its vertex indices.
+struct FaceTexture {
+    int property = -1;           // the list's index among the face's properties
+    std::vector<double> values;  // of the face being read
+    std::vector<double> table;   // u, v per corner of every face
+    std::vector<int> triangles;  // per fan triangle corner, its table row
+    std::vector<std::int64_t> polygon;
+    std::size_t faces_with = 0;
+    std::size_t faces_without = 0;
+
+    // After a face: its corners' rows, if it gave u, v for each corner.
+    void close_face(std::size_t corners) {
+        if (property >= 0 && corners >= 3) {
+            if (values.size() == 2 * corners) {
+                polygon.clear();
+                for (std::size_t k = 0; k < corners; ++k) {
+                    polygon.push_back(static_cast<std::int64_t>(table.size() / 2));
+                    table.push_back(values[2 * k]);
+                    table.push_back(values[2 * k + 1]);
+                }
+                append_fan(polygon, triangles);
+                ++faces_with;
+            } else {
+                ++faces_without;
+            }
+        }
+        values.clear();
+    }
+
+    // Per vertex where no seam splits a vertex's coordinates, else per corner.
+    void store(const TriangleMesh& mesh, VertexAttributes& out, const ParseContext& context) const {
+        if (faces_with == 0) {
+            return;
+        }
+        if (faces_without > 0) {
+            context.warn("face texture coordinates (texcoord) on some faces only, left out");
+            return;
+        }
+        const Eigen::MatrixXd rows =
+            Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(
+                table.data(), static_cast<Eigen::Index>(table.size() / 2), 2);
+        const Eigen::MatrixX3i corners = as_faces(triangles);
+        if (const auto per_vertex = per_vertex_rows(mesh.F, rows, corners, mesh.V.rows())) {
+            out.uvs = *per_vertex;
+        } else {
+            out.corner_uvs = rows;
+            out.corner_uv_faces = corners;
+        }
+    }
+};
 
 }  // namespace
 
@@ -378,6 +459,7 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
     std::vector<std::int64_t> corners;
     std::vector<double> values;  // a vertex's single properties, by property index
     VertexExtras extras;
+    FaceTexture texture;
 
     for (const auto& element : header.elements) {
         const bool is_vertex = element.name == "vertex";
@@ -393,9 +475,12 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
                 y = property.name == "y" ? p : y;
                 z = property.name == "z" ? p : z;
             }
-            if (is_face && property.is_list &&
-                (property.name == "vertex_indices" || property.name == "vertex_index" ||
-                 indices < 0)) {
+            if (is_face && property.is_list && property.name == "texcoord" &&
+                attributes != nullptr) {
+                texture.property = p;
+            } else if (is_face && property.is_list &&
+                       (property.name == "vertex_indices" || property.name == "vertex_index" ||
+                        indices < 0)) {
                 indices = p;
             }
         }
@@ -443,6 +528,8 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
                     const double value = reader.read(property.type, element.name);
                     if (is_face && p == indices) {
                         corners.push_back(builder.checked_index(value));
+                    } else if (is_face && p == texture.property) {
+                        texture.values.push_back(value);
                     }
                 }
             }
@@ -455,6 +542,7 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
                 }
             } else if (is_face) {
                 builder.add_polygon(corners);
+                texture.close_face(corners.size());
             }
         }
     }
@@ -465,10 +553,12 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
     if (reader.content_left()) {
         context.fail("more data than the header declares");
     }
+    TriangleMesh mesh = builder.finish();
     if (attributes != nullptr) {
         store_extras(extras, *vertex_element, *attributes);
+        texture.store(mesh, *attributes, context);
     }
-    return builder.finish();
+    return mesh;
 }
 
 }  // namespace genflow::detail

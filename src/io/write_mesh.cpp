@@ -49,9 +49,25 @@ double unit_channel(std::uint8_t value) {
     return value / 255.0;
 }
 
-// Vertex colours as "v x y z r g b" (0–1), the extension MeshLab, Blender and trimesh read.
+// Texture coordinates as an OBJ file gives them: `vt` rows, and per face the rows of its
+// corners (0-based); per corner where the attributes have them so, else one row per vertex.
+struct ObjTexture {
+    const Eigen::MatrixX2d* rows = nullptr;
+    const Eigen::MatrixX3i* corners = nullptr;  // null: row i for vertex i
+};
+
+ObjTexture obj_texture(const VertexAttributes& attributes) {
+    if (attributes.corner_uv_faces.rows() > 0) {
+        return {&attributes.corner_uvs, &attributes.corner_uv_faces};
+    }
+    return {attributes.uvs.rows() > 0 ? &attributes.uvs : nullptr, nullptr};
+}
+
+// Vertex colours as "v x y z r g b" (0–1), the extension MeshLab, Blender and trimesh read;
+// texture coordinates as `vt` records named by the faces' corners ("f v/t").
 std::string encode_obj(const TriangleMesh& mesh, const VertexAttributes& attributes) {
     const bool colored = attributes.colors.rows() > 0;
+    const ObjTexture texture = obj_texture(attributes);
     std::string out = "# written by genflow\n";
     for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
         out += "v";
@@ -65,11 +81,24 @@ std::string encode_obj(const TriangleMesh& mesh, const VertexAttributes& attribu
         }
         out += '\n';
     }
+    for (Eigen::Index t = 0; texture.rows != nullptr && t < texture.rows->rows(); ++t) {
+        out += "vt ";
+        append_number(out, (*texture.rows)(t, 0));
+        out += ' ';
+        append_number(out, (*texture.rows)(t, 1));
+        out += '\n';
+    }
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
         out += "f";
         for (int c = 0; c < 3; ++c) {
             out += ' ';
             append_number(out, mesh.F(f, c) + 1);
+            if (texture.rows != nullptr) {
+                out += '/';
+                append_number(
+                    out,
+                    (texture.corners != nullptr ? (*texture.corners)(f, c) : mesh.F(f, c)) + 1);
+            }
         }
         out += '\n';
     }
@@ -117,8 +146,25 @@ void append_value(std::string& out, double value, bool binary, bool single) {
     }
 }
 
-// Vertex rows "x y z [nx ny nz] [values...] [red green blue]": normals and values in the
-// coordinates' type, colours as uchar, as MeshLab and CloudCompare write them.
+// Face f's `texcoord` list: 6, then u, v of each corner, as floats.
+void append_corner_uvs(std::string& out, const VertexAttributes& attributes, Eigen::Index f,
+                       bool binary) {
+    if (binary) {
+        out += static_cast<char>(6);
+    } else {
+        out += " 6";
+    }
+    for (int c = 0; c < 3; ++c) {
+        for (int k = 0; k < 2; ++k) {
+            append_value(out, attributes.corner_uvs(attributes.corner_uv_faces(f, c), k), binary,
+                         true);
+        }
+    }
+}
+
+// Vertex rows "x y z [nx ny nz] [texture_u texture_v] [values...] [red green blue]": normals,
+// texture coordinates and values in the coordinates' type, colours as uchar; per-corner texture
+// coordinates as the faces' `texcoord` lists (u, v per corner): as MeshLab writes them.
 std::string encode_ply(const TriangleMesh& mesh, const VertexAttributes& attributes,
                        const WriteMeshOptions& options) {
     const bool binary = options.ply_encoding == PlyEncoding::BinaryLittleEndian;
@@ -136,14 +182,20 @@ std::string encode_ply(const TriangleMesh& mesh, const VertexAttributes& attribu
     for (const char* axis : {"nx", "ny", "nz"}) {
         out += with_normals ? "property " + type + " " + axis + "\n" : "";
     }
+    const bool with_uvs = attributes.uvs.rows() > 0;
+    for (const char* coordinate : {"texture_u", "texture_v"}) {
+        out += with_uvs ? "property " + type + " " + coordinate + "\n" : "";
+    }
     for (const auto& [name, values] : attributes.scalars) {
         out += "property " + type + " " + name + "\n";
     }
     for (const char* channel : {"red", "green", "blue"}) {
         out += colored ? std::string("property uchar ") + channel + "\n" : "";
     }
+    const bool with_corner_uvs = attributes.corner_uv_faces.rows() > 0;
     out += "element face " + std::to_string(mesh.F.rows()) +
-           "\nproperty list uchar int vertex_indices\nend_header\n";
+           "\nproperty list uchar int vertex_indices\n" +
+           (with_corner_uvs ? "property list uchar float texcoord\n" : "") + "end_header\n";
     for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
         const std::size_t row_start = out.size();
         for (int c = 0; c < 3; ++c) {
@@ -151,6 +203,9 @@ std::string encode_ply(const TriangleMesh& mesh, const VertexAttributes& attribu
         }
         for (int c = 0; with_normals && c < 3; ++c) {
             append_value(out, attributes.normals(i, c), binary, single);
+        }
+        for (int c = 0; with_uvs && c < 2; ++c) {
+            append_value(out, attributes.uvs(i, c), binary, single);
         }
         for (const auto& scalar : attributes.scalars) {
             append_value(out, scalar.second[i], binary, single);
@@ -180,6 +235,11 @@ std::string encode_ply(const TriangleMesh& mesh, const VertexAttributes& attribu
                 out += ' ';
                 append_number(out, mesh.F(f, c));
             }
+        }
+        if (with_corner_uvs) {
+            append_corner_uvs(out, attributes, f, binary);
+        }
+        if (!binary) {
             out += '\n';
         }
     }
@@ -242,6 +302,17 @@ std::string left_out(Written format, const VertexAttributes& attributes) {
     if (format != Written::Ply && format != Written::Glb && !attributes.scalars.empty()) {
         missing.push_back("values");
     }
+    const bool texture = format == Written::Obj || format == Written::Ply;
+    if (!texture && format != Written::Glb && attributes.uvs.rows() > 0) {
+        missing.push_back("texture coordinates");
+    }
+    if (!texture && attributes.corner_uv_faces.rows() > 0) {
+        missing.push_back("texture coordinates per corner");
+    }
+    if (format == Written::Obj && attributes.uvs.rows() > 0 &&
+        attributes.corner_uv_faces.rows() > 0) {
+        missing.push_back("texture coordinates per vertex beside those per corner");
+    }
     std::string words;
     for (std::size_t k = 0; k < missing.size(); ++k) {
         words += (k == 0 ? "vertex " : k + 1 == missing.size() ? " and " : ", ");
@@ -269,6 +340,20 @@ void check_attributes(const std::filesystem::path& path, const TriangleMesh& mes
     if (attributes.normals.rows() != 0 &&
         (attributes.normals.rows() != mesh.V.rows() || !detail::all_finite(attributes.normals))) {
         throw InvalidInput(path.string() + ": vertex normals need a finite row per vertex");
+    }
+    if (attributes.uvs.rows() != 0 &&
+        (attributes.uvs.rows() != mesh.V.rows() || !detail::all_finite(attributes.uvs))) {
+        throw InvalidInput(path.string() + ": texture coordinates need a finite row per vertex");
+    }
+    const Eigen::MatrixX3i& corners = attributes.corner_uv_faces;
+    const bool no_corners = corners.rows() == 0 && attributes.corner_uvs.rows() == 0;
+    if (!no_corners &&
+        (corners.rows() == 0 || corners.rows() != mesh.F.rows() || corners.minCoeff() < 0 ||
+         corners.maxCoeff() >= attributes.corner_uvs.rows() ||
+         !detail::all_finite(attributes.corner_uvs))) {
+        throw InvalidInput(path.string() +
+                           ": texture coordinates per corner need a row of table indices per "
+                           "face and finite coordinates");
     }
     for (const auto& [name, values] : attributes.scalars) {
         if (!is_ply_name(name) || name == "x" || name == "y" || name == "z" || name == "nx" ||

@@ -20,8 +20,13 @@ bool is_label(const Eigen::VectorXd& values) {
 void check_rows(const TriangleMesh& template_mesh, const VertexAttributes& attributes,
                 const std::vector<SurfacePoint>& correspondence) {
     const Eigen::Index n = template_mesh.V.rows();
+    const Eigen::MatrixX3i& corners = attributes.corner_uv_faces;
     bool fits = static_cast<Eigen::Index>(correspondence.size()) == n &&
-                (attributes.colors.rows() == 0 || attributes.colors.rows() == n);
+                (attributes.colors.rows() == 0 || attributes.colors.rows() == n) &&
+                (attributes.uvs.rows() == 0 || attributes.uvs.rows() == n) &&
+                (corners.rows() == 0 ||
+                 (corners.rows() == template_mesh.F.rows() && corners.minCoeff() >= 0 &&
+                  corners.maxCoeff() < attributes.corner_uvs.rows()));
     for (const auto& [name, values] : attributes.scalars) {
         fits = fits && values.size() == n;
     }
@@ -29,8 +34,22 @@ void check_rows(const TriangleMesh& template_mesh, const VertexAttributes& attri
         throw InvalidInput(
             "carry_attributes: the correspondence and the attributes need a row "
             "per template vertex (" +
-            std::to_string(n) + ")");
+            std::to_string(n) + "), texture coordinates per corner a row per face");
     }
+}
+
+// The texture coordinates at a point of template face `face` (barycentric `weights`): from
+// the face's corners, per corner where the template has them so (the face's own side of a
+// seam), else per vertex.
+Eigen::RowVector2d texture_at(const TriangleMesh& template_mesh, const VertexAttributes& attributes,
+                              Eigen::Index face, const Eigen::Vector3d& weights) {
+    Eigen::RowVector2d uv = Eigen::RowVector2d::Zero();
+    for (int k = 0; k < 3; ++k) {
+        uv += weights[k] * (attributes.corner_uv_faces.rows() > 0
+                                ? attributes.corner_uvs.row(attributes.corner_uv_faces(face, k))
+                                : attributes.uvs.row(template_mesh.F(face, k)));
+    }
+    return uv;
 }
 
 }  // namespace
@@ -48,6 +67,10 @@ VertexAttributes carry_attributes(const TriangleMesh& template_mesh,
     const bool has_colors = attributes.colors.rows() > 0;
     if (has_colors) {
         carried.colors.resize(count, 3);
+    }
+    const bool has_texture = attributes.uvs.rows() > 0 || attributes.corner_uv_faces.rows() > 0;
+    if (has_texture) {
+        carried.uvs.resize(count, 2);
     }
     for (const auto& [name, values] : attributes.scalars) {
         carried.scalars.emplace_back(name, Eigen::VectorXd(count));
@@ -71,6 +94,10 @@ VertexAttributes carry_attributes(const TriangleMesh& template_mesh,
                 carried.colors(t, c) =
                     static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0, 255.0)));
             }
+        }
+        if (has_texture) {
+            carried.uvs.row(t) =
+                texture_at(template_mesh, attributes, under.face, under.barycentric);
         }
         for (std::size_t s = 0; s < carried.scalars.size(); ++s) {
             const Eigen::VectorXd& values = attributes.scalars[s].second;

@@ -209,6 +209,8 @@ std::string view_section(const Report& report) {
         "<span id='legend' hidden><span id='legend-name'></span> 0 <span "
         "id='legend-bar'></span> <span id='legend-top'></span></span></div>\n"
         "<p id='viewer-error' hidden></p>\n<div id='viewer'></div>\n"
+        "<p class='meta'>Drag to turn, right-drag to move, scroll to zoom; "
+        "<a href='#view'>the view alone</a>.</p>\n"
         "<noscript><p>The view needs JavaScript; the plots and tables below do not.</p>"
         "</noscript>\n";
     return html;

@@ -201,13 +201,26 @@
       });
     }
 
+    // The page's address ending in #view shows the view alone, filling the window (with its
+    // controls and scale): for a large view, and for pictures of it.
+    function applyHash() {
+      body.classList.toggle('view-only', window.location.hash === '#view');
+      resize();
+      frameShown();
+      render();
+    }
+
     buildControls();
     applyColoring();
     placeMeshes();
-    resize();
-    frameShown();
-    render();
-    window.addEventListener('resize', resize);
+    // A new window size frames the meshes anew: the old framing may cut them off.
+    window.addEventListener('resize', function () {
+      resize();
+      frameShown();
+      render();
+    });
+    window.addEventListener('hashchange', applyHash);
+    applyHash();
   }
 
   try {

@@ -133,6 +133,33 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     EXPECT_NE(read_file(directory / "colored.ply").find("property uchar red"), std::string::npos);
 }
 
+// The template's texture coordinates go with it, per corner where its file has them so.
+TEST(MatchCli, KeepsTheTemplatesTextureCoordinates) {
+    const test::TemporaryDirectory directory;
+    const MovedLimbs pair(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()), {0, 1, 0});
+    const TriangleMesh& limb = pair.template_mesh;
+    VertexAttributes textured;  // each face its own patch: every edge a seam
+    textured.corner_uvs.resize(3 * limb.F.rows(), 2);
+    textured.corner_uv_faces.resize(limb.F.rows(), 3);
+    for (Eigen::Index f = 0; f < limb.F.rows(); ++f) {
+        for (int c = 0; c < 3; ++c) {
+            textured.corner_uv_faces(f, c) = static_cast<int>(3 * f + c);
+            textured.corner_uvs.row(3 * f + c) << static_cast<double>(f) / limb.F.rows(), c / 2.0;
+        }
+    }
+    write_mesh(directory / "template.obj", limb, textured);
+    write_mesh(directory / "target.ply", pair.target);
+    const auto result = run_genflow(
+        "match " + quoted(directory / "template.obj") + " " + quoted(directory / "target.ply") +
+        " -o " + quoted(directory / "out.obj") + " --prior rigid --iterations 5 --quiet");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    VertexAttributes kept;
+    const TriangleMesh out = read_mesh(directory / "out.obj", nullptr, &kept);
+    EXPECT_EQ(out.F, limb.F);
+    EXPECT_EQ(kept.corner_uv_faces, textured.corner_uv_faces);
+    EXPECT_EQ(kept.corner_uvs, textured.corner_uvs);
+}
+
 // A painted template matched onto a moved and resampled copy of itself hands its colours,
 // labels and values to the target's vertices through the correspondence file: a label comes
 // whole from the nearest corner, a value interpolated.

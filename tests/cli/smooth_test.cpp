@@ -62,6 +62,7 @@ TEST(SmoothCli, CarriesTheInputsColoursAndValuesAndSaysWhatItLeavesOut) {
     attributes.colors = VertexColors::Zero(noisy.V.rows(), 3);
     attributes.colors.col(0) = (noisy.V.col(0).array() > 0).cast<std::uint8_t>() * 255;
     attributes.scalars.emplace_back("quality", noisy.V.col(1));
+    attributes.uvs = noisy.V.leftCols(2);
     write_mesh(directory / "in.ply", noisy, attributes);
     const auto result = run_genflow("smooth " + quoted(directory / "in.ply") + " " +
                                     quoted(directory / "out.ply") + " --steps 2");
@@ -75,16 +76,21 @@ TEST(SmoothCli, CarriesTheInputsColoursAndValuesAndSaysWhatItLeavesOut) {
     ASSERT_EQ(out.scalars.size(), 1U);
     EXPECT_EQ(out.scalars[0].second, attributes.scalars[0].second);
     EXPECT_EQ(out.normals.rows(), 0);
+    EXPECT_EQ(out.uvs, attributes.uvs);
     // info says what the file gives per vertex.
     const auto info =
         nlohmann::json::parse(run_genflow("info --json " + quoted(directory / "in.ply")).out);
-    EXPECT_EQ(info["vertex_attributes"],
-              nlohmann::json({{"normals", true}, {"colors", true}, {"values", {"quality"}}}));
+    EXPECT_EQ(info["vertex_attributes"], nlohmann::json({{"normals", true},
+                                                         {"colors", true},
+                                                         {"values", {"quality"}},
+                                                         {"texture_coordinates", "per vertex"}}));
     // OFF keeps the colours, not the values: said too.
     const auto off = run_genflow("smooth " + quoted(directory / "in.ply") + " " +
                                  quoted(directory / "out.off") + " --steps 2");
     ASSERT_EQ(off.exit_code, 0) << off.err;
-    EXPECT_NE(off.err.find("out.off: .off holds no vertex values"), std::string::npos) << off.err;
+    EXPECT_NE(off.err.find("out.off: .off holds no vertex values and texture coordinates"),
+              std::string::npos)
+        << off.err;
 }
 
 TEST(SmoothCli, VolumeFairingKeepsTheVolumeThatFairingLoses) {

@@ -125,7 +125,7 @@ TEST(ReadMesh, ObjWithPolygonsSlashesNegativeIndicesAndComments) {
         parse("# comment\nmtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0 1.0\nv 0 1 0\n"
               "vn 0 0 1\nvt 0 0\ng square\nf 1/1/1 2//1 3/1 -1 # quad\n",
               MeshFormat::Obj, &warnings));
-    EXPECT_EQ(warnings.size(), 2u);  // the quad split, and the vt and vn left out
+    EXPECT_EQ(warnings.size(), 1u);  // the quad split; vt and vn are read only when asked for
 }
 
 TEST(ReadMesh, OffWithCommentsColoursAndCountsOnTheKeywordLine) {
@@ -218,15 +218,6 @@ TEST(ReadMesh, ReadsBackTheAttributesGenflowWrites) {
     write_mesh(directory / "a.obj", mesh, written);
     (void)read_mesh(directory / "a.obj", nullptr, &read);
     EXPECT_EQ(read.colors, written.colors);
-}
-
-// Texture coordinates and per-corner normals of an OBJ file are not read, and it says so.
-TEST(ReadMesh, SaysWhatAnObjFileHoldsThatIsLeftOut) {
-    std::vector<std::string> warnings;
-    (void)parse_mesh("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n",
-                     MeshFormat::Obj, "t.obj", &warnings);
-    ASSERT_EQ(warnings.size(), 1U);
-    EXPECT_EQ(warnings[0], "t.obj: 3 texture coordinate and normal records (vt, vn) left out");
 }
 
 TEST(ReadMesh, FromFilesByExtension) {

@@ -155,6 +155,7 @@ TEST(WriteMesh, WritesBinaryGltfThatTinyGltfReadsBack) {
     attributes.colors(2, 0) = 0;
     attributes.colors(2, 1) = 188;  // sRGB 188 is linear 0.5029
     attributes.scalars.emplace_back("distance", Eigen::VectorXd::LinSpaced(mesh.V.rows(), 0, 1));
+    attributes.uvs = mesh.V.leftCols(2);
     write_mesh(directory / "out.GLB", mesh, attributes);
     const std::string bytes = read_file(directory / "out.GLB");
     tinygltf::Model model;
@@ -192,6 +193,11 @@ TEST(WriteMesh, WritesBinaryGltfThatTinyGltfReadsBack) {
     EXPECT_NEAR(colors[7], 0.5029, 1e-4);
     EXPECT_FLOAT_EQ(colors[8], 1);
     EXPECT_FLOAT_EQ(floats("_DISTANCE").back(), 1);
+    // glTF's v runs down the image, OBJ's and PLY's up.
+    const std::vector<float> uvs = floats("TEXCOORD_0");
+    ASSERT_EQ(uvs.size(), static_cast<std::size_t>(2 * mesh.V.rows()));
+    EXPECT_FLOAT_EQ(uvs[2], static_cast<float>(mesh.V(1, 0)));
+    EXPECT_FLOAT_EQ(uvs[3], static_cast<float>(1 - mesh.V(1, 1)));
     const tinygltf::Accessor& indices =
         model.accessors.at(static_cast<std::size_t>(primitive.indices));
     EXPECT_EQ(indices.count, static_cast<std::size_t>(mesh.F.size()));

@@ -20,16 +20,18 @@ namespace genflow {
 ///   dropped with a warning.
 /// - STL stores a triangle soup: vertices with bitwise-equal coordinates are merged, in order of
 ///   first appearance.
-/// - With `attributes`, a PLY file's vertex normals, colours and other vertex properties are
-///   read into it (VertexAttributes; genflow writes them back), and so are the colours of an
-///   OBJ file's `v x y z r g b` records. Everything else (texture coordinates, per-corner
-///   normals, materials, other PLY elements) is skipped, with a warning where it held data.
+/// - With `attributes`, a PLY file's vertex normals, colours, texture coordinates and other
+///   vertex properties and its faces' `texcoord` lists are read into it (VertexAttributes;
+///   genflow writes them back), and so are an OBJ file's `v x y z r g b` colours, `vt` texture
+///   coordinates and `vn` normals. Texture coordinates are kept per vertex where no seam gives
+///   a vertex two, else per corner; normals only per vertex. Everything else (normals that
+///   differ at a vertex's corners, materials, other PLY elements) is skipped, with a warning
+///   where it held data.
 /// - Nothing is checked beyond what is needed to parse the file: call `validate()` on the result
 ///   for non-finite coordinates, indices out of range, degenerate or non-manifold faces.
 ///
-/// Readers of PLY, OFF and STL are our own and are fuzzed: a malformed or truncated file raises
-/// IoError, it never crashes, hangs or allocates more than the file's size can justify. OBJ is
-/// read by tinyobjloader.
+/// The readers are our own and are fuzzed: a malformed or truncated file raises IoError, it
+/// never crashes, hangs or allocates more than the file's size can justify.
 ///
 /// \param warnings  if given, receives one line per recoverable oddity of the file.
 /// \throws IoError  "<path>: <problem>" if the file cannot be opened, its extension is unknown,
