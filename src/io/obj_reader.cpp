@@ -184,6 +184,7 @@ TriangleMesh parse_obj(std::string_view bytes, const ParseContext& context,
     std::vector<std::array<std::uint8_t, 3>> colors;  // of the `v` records that have one
     CornerRecords texture;
     CornerRecords normals;
+    bool materials = false;
     TextScanner scanner(bytes);
     std::vector<std::int64_t> corners;
     std::vector<std::string_view> tokens;
@@ -225,11 +226,16 @@ TriangleMesh parse_obj(std::string_view bytes, const ParseContext& context,
             builder.add_polygon(corners);
             close_polygon(texture, corners.size(), 2, context, line_number);
             close_polygon(normals, corners.size(), 3, context, line_number);
+        } else if (tokens[0] == "mtllib") {
+            materials = true;
         }
-        // Everything else (g, o, s, usemtl, mtllib, l, p, ...) carries nothing we keep.
+        // Everything else (g, o, s, usemtl, l, p, ...) carries nothing we keep.
     }
     TriangleMesh mesh = builder.finish();
     if (attributes != nullptr) {
+        if (materials) {
+            context.warn("its material library (mtllib) is left out: outputs name no material");
+        }
         store_colors(colors, builder.num_vertices(), *attributes, context);
         store_texture(settle(texture, 2, mesh, "texture coordinates (vt)", context), *attributes);
         store_normals(settle(normals, 3, mesh, "normals (vn)", context), *attributes, context);

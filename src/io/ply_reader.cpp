@@ -396,6 +396,22 @@ void store_extras(const VertexExtras& extras, const Element& vertex, VertexAttri
     }
 }
 
+// The face properties genflow does not keep (per-face colours, normals, values), named in one
+// warning.
+void warn_left_out_face_properties(const Element& face, int indices, int texcoord,
+                                   const ParseContext& context) {
+    std::string names;
+    for (int p = 0; p < static_cast<int>(face.properties.size()); ++p) {
+        if (p != indices && p != texcoord) {
+            names +=
+                (names.empty() ? "" : ", ") + face.properties[static_cast<std::size_t>(p)].name;
+        }
+    }
+    if (!names.empty()) {
+        context.warn("face properties left out: " + names);
+    }
+}
+
 // A face element's `texcoord` list (MeshLab's texture coordinates per corner: u, v for each
 // of the face's corners), kept beside the fan split of its vertex indices.
 struct FaceTexture {
@@ -489,6 +505,9 @@ TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
         }
         if (is_face && indices < 0) {
             context.fail("element 'face' has no vertex index list");
+        }
+        if (is_face && attributes != nullptr) {
+            warn_left_out_face_properties(element, indices, texture.property, context);
         }
         if (!is_vertex && !is_face && element.count > 0) {
             context.warn("element '" + element.name + "' ignored");

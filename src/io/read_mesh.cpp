@@ -31,7 +31,7 @@ TriangleMesh parse_mesh(std::string_view bytes, MeshFormat format, std::string_v
         case MeshFormat::Ply:
             return detail::parse_ply(bytes, context, attributes);
         case MeshFormat::Off:
-            return detail::parse_off(bytes, context);
+            return detail::parse_off(bytes, context, attributes);
         case MeshFormat::Stl:
             return detail::parse_stl(bytes, context);
     }

@@ -22,7 +22,11 @@ TriangleMesh parse_obj(std::string_view bytes, const ParseContext& context,
 /// (per vertex where no seam gives a vertex two, else per corner).
 TriangleMesh parse_ply(std::string_view bytes, const ParseContext& context,
                        VertexAttributes* attributes = nullptr);
-TriangleMesh parse_off(std::string_view bytes, const ParseContext& context);
+/// With `attributes`, also the vertex columns the keyword announces: normals (N), colours (C;
+/// integers 0–255 or fractions 0–1, alpha dropped) and texture coordinates (ST); face colours
+/// are left out with a warning.
+TriangleMesh parse_off(std::string_view bytes, const ParseContext& context,
+                       VertexAttributes* attributes = nullptr);
 TriangleMesh parse_stl(std::string_view bytes, const ParseContext& context);
 
 /// A mesh file's bytes.

@@ -105,23 +105,34 @@ std::string encode_obj(const TriangleMesh& mesh, const VertexAttributes& attribu
     return out;
 }
 
-// Vertex colours as COFF: "x y z r g b a", 0–255.
+// Geomview's OFF with the columns the attributes have, announced by the keyword's prefixes:
+// "[ST][C][N]OFF", vertex lines "x y z [nx ny nz] [r g b a] [s t]" (colours 0–255).
 std::string encode_off(const TriangleMesh& mesh, const VertexAttributes& attributes) {
+    const bool normals = attributes.normals.rows() > 0;
     const bool colored = attributes.colors.rows() > 0;
-    std::string out = colored ? "COFF\n" : "OFF\n";
+    const bool textured = attributes.uvs.rows() > 0;
+    std::string out =
+        std::string(textured ? "ST" : "") + (colored ? "C" : "") + (normals ? "N" : "") + "OFF\n";
     out += std::to_string(mesh.V.rows()) + " " + std::to_string(mesh.F.rows()) + " 0\n";
     for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
         for (int c = 0; c < 3; ++c) {
             append_number(out, mesh.V(i, c));
-            out += c < 2 || colored ? ' ' : '\n';
+            out += ' ';
+        }
+        for (int c = 0; normals && c < 3; ++c) {
+            append_number(out, attributes.normals(i, c));
+            out += ' ';
         }
         for (int c = 0; colored && c < 3; ++c) {
             append_number(out, static_cast<int>(attributes.colors(i, c)));
             out += ' ';
         }
-        if (colored) {
-            out += "255\n";
+        out += colored ? "255 " : "";
+        for (int c = 0; textured && c < 2; ++c) {
+            append_number(out, attributes.uvs(i, c));
+            out += ' ';
         }
+        out.back() = '\n';
     }
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
         out += "3";
@@ -296,14 +307,14 @@ std::string left_out(Written format, const VertexAttributes& attributes) {
     if (format == Written::Stl && attributes.colors.rows() > 0) {
         missing.push_back("colours");
     }
-    if (format != Written::Ply && attributes.normals.rows() > 0) {
+    if (format != Written::Ply && format != Written::Off && attributes.normals.rows() > 0) {
         missing.push_back("normals");
     }
     if (format != Written::Ply && format != Written::Glb && !attributes.scalars.empty()) {
         missing.push_back("values");
     }
     const bool texture = format == Written::Obj || format == Written::Ply;
-    if (!texture && format != Written::Glb && attributes.uvs.rows() > 0) {
+    if (!texture && format != Written::Glb && format != Written::Off && attributes.uvs.rows() > 0) {
         missing.push_back("texture coordinates");
     }
     if (!texture && attributes.corner_uv_faces.rows() > 0) {

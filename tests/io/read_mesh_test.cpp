@@ -137,6 +137,48 @@ TEST(ReadMesh, OffWithCommentsColoursAndCountsOnTheKeywordLine) {
               MeshFormat::Off));
 }
 
+// The columns the keyword's prefixes announce, in Geomview's order: normals, colour (0–255, or
+// 0–1 fractions), texture coordinates; face colours are left out, and said to be.
+TEST(ReadMesh, ReadsTheColumnsAnOffKeywordAnnounces) {
+    std::vector<std::string> warnings;
+    VertexAttributes read;
+    const TriangleMesh mesh = parse_mesh(
+        "STCNOFF\n3 1 0\n0 0 0 0 0 1 255 0 0 255 0.5 0.25\n1 0 0 0 0 1 0 255 0 255 1 0\n"
+        "0 1 0 0 0 1 0 0 255 255 0 1\n3 0 1 2 9 9 9\n",
+        MeshFormat::Off, "t.off", &warnings, &read);
+    EXPECT_EQ(mesh.F.rows(), 1);
+    ASSERT_EQ(read.normals.rows(), 3);
+    EXPECT_EQ(read.normals.row(1), Eigen::RowVector3d(0, 0, 1));
+    ASSERT_EQ(read.colors.rows(), 3);
+    EXPECT_EQ(read.colors(1, 1), 255);
+    EXPECT_EQ(read.colors(2, 0), 0);
+    ASSERT_EQ(read.uvs.rows(), 3);
+    EXPECT_EQ(read.uvs.row(0), Eigen::RowVector2d(0.5, 0.25));
+    ASSERT_EQ(warnings.size(), 1U);
+    EXPECT_EQ(warnings[0], "t.off: 1 face colours left out");
+
+    (void)parse_mesh("COFF\n3 1 0\n0 0 0 1.0 0.5 0\n1 0 0 1 1 1\n0 1 0 0 0 0\n3 0 1 2\n",
+                     MeshFormat::Off, "t.off", nullptr, &read);
+    EXPECT_EQ(read.colors(0, 0), 255);  // fractions, written with a point
+    EXPECT_EQ(read.colors(0, 1), 128);
+    EXPECT_EQ(read.colors(1, 0), 1);  // integers
+    EXPECT_THROW((void)parse_mesh("NOFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Off,
+                                  "t.off", nullptr, &read),
+                 IoError);
+
+    // Written back with the same columns.
+    const test::TemporaryDirectory directory;
+    VertexAttributes written = read;
+    written.normals = Eigen::MatrixX3d::Ones(3, 3);
+    written.uvs = Eigen::MatrixX2d::Constant(3, 2, 0.5);
+    write_mesh(directory / "a.off", mesh, written);
+    VertexAttributes back;
+    (void)read_mesh(directory / "a.off", nullptr, &back);
+    EXPECT_EQ(back.normals, written.normals);
+    EXPECT_EQ(back.colors, written.colors);
+    EXPECT_EQ(back.uvs, written.uvs);
+}
+
 TEST(ReadMesh, AsciiStlIsWelded) {
     expect_square(
         parse("solid square\n"

@@ -114,10 +114,13 @@ TEST(TextureCoordinates, PlyFaceTexcoordListsGiveThemPerCornerAtASeam) {
     const std::string text =
         "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
         "property float z\nelement face 2\nproperty list uchar int vertex_indices\n"
-        "property list uchar float texcoord\nend_header\n"
-        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 6 0 0 1 0 1 1\n3 0 2 3 6 0.5 0.5 1 1 0 1\n";
+        "property list uchar float texcoord\nproperty uchar red\nend_header\n"
+        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 6 0 0 1 0 1 1 7\n3 0 2 3 6 0.5 0.5 1 1 0 1 7\n";
     VertexAttributes read;
-    const TriangleMesh mesh = parse_mesh(text, MeshFormat::Ply, "t.ply", nullptr, &read);
+    std::vector<std::string> warnings;
+    const TriangleMesh mesh = parse_mesh(text, MeshFormat::Ply, "t.ply", &warnings, &read);
+    ASSERT_EQ(warnings.size(), 1U);
+    EXPECT_EQ(warnings[0], "t.ply: face properties left out: red");
     ASSERT_EQ(read.corner_uv_faces.rows(), 2);
     EXPECT_EQ(corner_uv(mesh, read, 0, 0), Eigen::RowVector2d(0, 0));
     EXPECT_EQ(corner_uv(mesh, read, 1, 0), Eigen::RowVector2d(0.5, 0.5));
