@@ -171,12 +171,6 @@ void print_warnings(const LoadedMesh& loaded) {
     }
 }
 
-std::string frame_name(int step) {
-    std::ostringstream name;
-    name << "frame_" << std::setw(5) << std::setfill('0') << step << ".ply";
-    return name.str();
-}
-
 void create_output_directory(const std::filesystem::path& directory) {
     std::error_code error;
     std::filesystem::create_directories(directory, error);

@@ -56,9 +56,6 @@ LoadedMesh load_target(const std::filesystem::path& path);
 /// Prints "warning: <line>" on stderr for each reader warning and each validation warning.
 void print_warnings(const LoadedMesh& loaded);
 
-/// "frame_00042.ply": the name of animation frame `step` in a --frames directory.
-std::string frame_name(int step);
-
 /// A MatchOptions::stages callback that appends to `stages`, per stage of each level, its
 /// "level", "stage", "vertices" and "mean": the mean distance of the level's vertices from where
 /// `truth` (a row per vertex of `template_mesh`, placed) has them, over `diagonal`.

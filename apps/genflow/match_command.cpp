@@ -254,7 +254,7 @@ void register_match_command(CLI::App& app) {
     command->add_option("--frames", options->frames,
                         "Write the template as every flow step deformed it, at its own "
                         "resolution (coarse levels' motion carried to it), as frame_NNNNN.ply "
-                        "into this directory: one animation");
+                        "into this directory, or as one animated glTF to a name ending in .glb");
     command->add_option("--frame-every", options->frame_every, "Every k-th step only, for --frames")
         ->check(positive_number());
     command->add_option("--summary", options->summary, "Write the JSON summary to this file");

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli_support.h"
+#include "frame_sink.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
 #include "genflow/io/color_map.h"
@@ -58,9 +59,9 @@ VertexAttributes colored_by_last(VertexAttributes values, double diagonal,
 
 nlohmann::json run_match_job(MatchJob job) {
     int frame = 0;
+    FrameSink sink(job.frames);
     std::optional<TemplateFrames> frames;
-    if (job.frames) {
-        create_output_directory(*job.frames);
+    if (sink.active()) {
         frames.emplace(repair_surface(job.template_mesh).mesh);  // as match() flows it
     }
     ProgressBar bar("match", job.progress_bar);
@@ -69,8 +70,7 @@ nlohmann::json run_match_job(MatchJob job) {
                    "level " + std::to_string(p.levels - p.level) + "/" + std::to_string(p.levels) +
                        ", d_H " + std::to_string(p.energy));
         if (frames && (p.step % job.frame_every == 0 || p.step == p.max_steps)) {
-            write_mesh(*job.frames / frame_name(frame++), (*frames)(*p.mesh, *p.template_vertex),
-                       {.ply_precision = PlyPrecision::Float});
+            sink.add((*frames)(*p.mesh, *p.template_vertex), frame++);
         }
         return true;
     };
@@ -161,6 +161,8 @@ nlohmann::json run_match_job(MatchJob job) {
         write_correspondences(*job.correspondence, match_correspondence(result, job.target));
         summary["correspondence"] = job.correspondence->string();
     }
+    // The animation goes with the repaired template's vertices, which its own colours need not.
+    sink.finish({});
     if (job.report) {
         summary["report"] = job.report->string();
         write_html_report(*job.report, match_report(job, result, values, summary));

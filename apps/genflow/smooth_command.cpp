@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "frame_sink.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
 #include "genflow/io/write_mesh.h"
@@ -119,21 +120,17 @@ void run_smooth(SmoothCommandOptions options) {
     if (!options.json) {
         print_warnings(loaded);
     }
-    const std::filesystem::path frames(options.frames);
-    if (!options.frames.empty()) {
-        create_output_directory(frames);
-        write_mesh(frames / frame_name(0), loaded.mesh, {.ply_precision = PlyPrecision::Float});
-    }
+    FrameSink frames(options.frames.empty() ? std::nullopt
+                                            : std::optional<std::filesystem::path>(options.frames));
+    frames.add(loaded.mesh, 0);
     if (options.lambda > 0) {
         options.smoothing.lambda = options.lambda;
     }
     ProgressBar bar("smooth", !options.json);
     options.smoothing.progress = [&](const FlowProgress& progress) {
         bar.update(progress.step, progress.max_steps, "E " + std::to_string(progress.energy));
-        if (!options.frames.empty() &&
-            (progress.step % options.frame_every == 0 || progress.step == progress.max_steps)) {
-            write_mesh(frames / frame_name(progress.step), *progress.mesh,
-                       {.ply_precision = PlyPrecision::Float});
+        if (progress.step % options.frame_every == 0 || progress.step == progress.max_steps) {
+            frames.add(*progress.mesh, progress.step);
         }
         return true;
     };
@@ -146,8 +143,9 @@ void run_smooth(SmoothCommandOptions options) {
     const nlohmann::json summary = smooth_summary(options, loaded, result);
     // All or none, as a match's outputs.
     OutputTransaction outputs;
-    write_mesh_with(options.output, result.mesh, carried_attributes(loaded, options.json),
-                    options.json);
+    const VertexAttributes carried = carried_attributes(loaded, options.json);
+    write_mesh_with(options.output, result.mesh, carried, options.json);
+    frames.finish(carried);
     if (!options.report.empty()) {
         write_html_report(options.report, smooth_report(loaded.mesh, result, summary));
     }
@@ -205,7 +203,8 @@ void register_smooth_command(CLI::App& app) {
                       "Keep boundary vertices where they are");
     command->add_flag("--json", options->json, "Print a JSON summary instead of text");
     command->add_option("--frames", options->frames,
-                        "Write the input and every k-th step to DIR/frame_NNNNN.ply (float PLY)");
+                        "Write the input and every k-th step to DIR/frame_NNNNN.ply (float PLY), "
+                        "or as one animated glTF to a name ending in .glb");
     command->add_option("--frame-every", options->frame_every, "k for --frames")
         ->check(positive_number())
         ->capture_default_str();

@@ -80,9 +80,8 @@ std::string attribute_name(const std::string& name) {
     return result;
 }
 
-}  // namespace
-
-std::string encode_glb(const TriangleMesh& mesh, const VertexAttributes& attributes) {
+// One mesh, one node, one scene: `mesh` with its attributes, as encode_glb() describes.
+tinygltf::Model model_of(const TriangleMesh& mesh, const VertexAttributes& attributes) {
     tinygltf::Model model;
     model.asset.version = "2.0";
     model.asset.generator = "genflow";
@@ -143,12 +142,77 @@ std::string encode_glb(const TriangleMesh& mesh, const VertexAttributes& attribu
     scene.nodes.push_back(0);
     model.scenes.push_back(scene);
     model.defaultScene = 0;
+    return model;
+}
+
+std::string serialized(tinygltf::Model& model) {
     std::ostringstream stream;
     tinygltf::TinyGLTF writer;
     if (!writer.WriteGltfSceneToStream(&model, stream, false, true)) {
         throw IoError("glTF: the writer failed");
     }
     return stream.str();
+}
+
+// Frame k's positions and normals as morph target k - 1: their differences from frame 0's.
+void add_morph_targets(tinygltf::Model& model, const Eigen::MatrixX3i& faces,
+                       const std::vector<Eigen::MatrixX3d>& frames) {
+    tinygltf::Primitive& primitive = model.meshes.front().primitives.front();
+    const Eigen::MatrixX3d first_normals = vertex_normals(TriangleMesh{frames.front(), faces});
+    for (std::size_t k = 1; k < frames.size(); ++k) {
+        const Eigen::MatrixX3d normals = vertex_normals(TriangleMesh{frames[k], faces});
+        primitive.targets.push_back(
+            {{"POSITION", add_vec3(model, frames[k] - frames.front(), true)},
+             {"NORMAL", add_vec3(model, normals - first_normals, false)}});
+        model.meshes.front().weights.push_back(0);
+    }
+}
+
+// Frame k at k / fps: at that time target k - 1 has weight 1 and every other 0, and the
+// weights run linearly in between, so viewers blend one frame into the next.
+void add_frame_animation(tinygltf::Model& model, std::size_t frame_count, double fps) {
+    std::vector<float> times;
+    std::vector<float> weights;
+    for (std::size_t k = 0; k < frame_count; ++k) {
+        times.push_back(static_cast<float>(static_cast<double>(k) / fps));
+        for (std::size_t target = 0; target + 1 < frame_count; ++target) {
+            weights.push_back(target + 1 == k ? 1.0F : 0.0F);
+        }
+    }
+    tinygltf::AnimationSampler sampler;
+    sampler.input = add_accessor(model, times, TINYGLTF_TYPE_SCALAR, times.size(), 0);
+    tinygltf::Accessor& input = model.accessors[static_cast<std::size_t>(sampler.input)];
+    input.minValues = {times.front()};
+    input.maxValues = {times.back()};
+    sampler.output = add_accessor(model, weights, TINYGLTF_TYPE_SCALAR, weights.size(), 0);
+    sampler.interpolation = "LINEAR";
+    tinygltf::AnimationChannel channel;
+    channel.sampler = 0;
+    channel.target_node = 0;
+    channel.target_path = "weights";
+    tinygltf::Animation animation;
+    animation.name = "frames";
+    animation.samplers.push_back(sampler);
+    animation.channels.push_back(channel);
+    model.animations.push_back(animation);
+}
+
+}  // namespace
+
+std::string encode_glb(const TriangleMesh& mesh, const VertexAttributes& attributes) {
+    tinygltf::Model model = model_of(mesh, attributes);
+    return serialized(model);
+}
+
+std::string encode_animated_glb(const Eigen::MatrixX3i& faces,
+                                const std::vector<Eigen::MatrixX3d>& frames,
+                                const VertexAttributes& attributes, double frames_per_second) {
+    tinygltf::Model model = model_of(TriangleMesh{frames.front(), faces}, attributes);
+    if (frames.size() > 1) {
+        add_morph_targets(model, faces, frames);
+        add_frame_animation(model, frames.size(), frames_per_second);
+    }
+    return serialized(model);
 }
 
 }  // namespace genflow::detail

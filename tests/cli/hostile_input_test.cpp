@@ -141,6 +141,7 @@ TEST_F(HostileInput, EveryRefusalIsOneLineWithItsExitCodeAndChangesNoFile) {
          "c.ply: cannot be written: the directory"},
         {"distance s.ply s.ply --colored c.xyz", 2, "c.xyz: cannot write this format"},
         {"smooth s.ply o.ply --report r.txt", 2, "r.txt: a report is an HTML page"},
+        {"smooth s.ply o.ply --frames nodir/a.glb", 1, "a.glb: cannot be written: the directory"},
         {"distance s.ply s.ply --report nodir/r.html", 1,
          "r.html: cannot be written: the directory"},
         {"match limb.ply limb.ply -o o.ply --report r.ply", 2, "r.ply: a report is an HTML page"},

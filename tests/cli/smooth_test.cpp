@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_runner.h"
+#include "genflow/io/read_file.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/io/write_mesh.h"
 #include "genflow/mesh/primitives.h"
@@ -120,6 +121,17 @@ TEST(SmoothCli, FramesAndTextSummary) {
         EXPECT_TRUE(std::filesystem::exists(directory / "frames" / frame)) << frame;
     }
     EXPECT_FALSE(std::filesystem::exists(directory / "frames" / "frame_00001.ply"));
+    // The same frames as one animated glTF: frame 0 the mesh, the other two its morph targets.
+    const auto animated =
+        run_genflow("smooth " + quoted(directory / "noisy.obj") + " " +
+                    quoted(directory / "out.ply") + " --method fairing --steps 4 --frames " +
+                    quoted(directory / "frames.glb") + " --frame-every 2");
+    ASSERT_EQ(animated.exit_code, 0) << animated.err;
+    const std::string glb = read_file(directory / "frames.glb");
+    EXPECT_EQ(glb.substr(0, 4), "glTF");
+    EXPECT_NE(glb.find("\"targets\""), std::string::npos);
+    EXPECT_NE(glb.find("\"animations\""), std::string::npos);
+    EXPECT_NE(glb.find("\"weights\":[0.0,0.0]"), std::string::npos);
 }
 
 TEST(SmoothCli, BadArgumentsAndInputsAreRefusedWithoutOutput) {

@@ -41,14 +41,17 @@ struct WriteMeshOptions {
 void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
                 const WriteMeshOptions& options = {});
 
-/// Writes `mesh` with per-vertex `attributes`: PLY keeps all of them (each scalar a vertex
-/// property in the coordinates' type, colours as uchar red, green, blue), glTF too (colours as
-/// COLOR_0, each scalar a float attribute "_NAME"); OBJ keeps colours ("v x y z r g b", 0–1)
-/// and OFF too (COFF, 0–255); STL keeps neither. What a format cannot hold is left out with a
-/// warning in `warnings`, if given.
-/// \throws as write_mesh() above, and InvalidInput for colours or scalars that do not have a
-///         row per vertex, a non-finite scalar, or a scalar name with a space or one of x, y,
-///         z, red, green, blue.
+/// Writes `mesh` with `attributes`: PLY keeps all of them (each scalar a vertex property in the
+/// coordinates' type, colours as uchar red, green, blue, texture coordinates as texture_u,
+/// texture_v or per corner as the faces' texcoord lists); glTF all but normals and texture
+/// coordinates per corner (colours as COLOR_0, texture coordinates as TEXCOORD_0, each scalar
+/// a float attribute "_NAME"); OBJ colours ("v x y z r g b", 0–1) and texture coordinates
+/// (vt, per vertex or per corner); OFF colours (0–255), normals and texture coordinates per
+/// vertex ("[ST][C][N]OFF"); STL none. What a format cannot hold is left out with a warning in
+/// `warnings`, if given.
+/// \throws as write_mesh() above, and InvalidInput for attributes that do not have a finite
+///         row per vertex (texture coordinates per corner: a row of table indices per face),
+///         or a scalar name with a space or one of x, y, z, red, green, blue.
 void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
                 const VertexAttributes& attributes, const WriteMeshOptions& options = {},
                 std::vector<std::string>* warnings = nullptr);

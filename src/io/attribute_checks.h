@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: MIT
+// What write_mesh() and write_animation() require of the attributes they write.
+#pragma once
+
+#include <filesystem>
+
+#include "genflow/io/vertex_attributes.h"
+#include "genflow/mesh.h"
+
+namespace genflow::detail {
+
+/// Throws InvalidInput "<path>: ..." unless each attribute has a finite row per vertex of
+/// `mesh` (texture coordinates per corner: a row of table indices per face), and each value a
+/// name of its own that a PLY header can hold.
+void check_attributes(const std::filesystem::path& path, const TriangleMesh& mesh,
+                      const VertexAttributes& attributes);
+
+}  // namespace genflow::detail
