@@ -80,6 +80,7 @@ TriangleMesh parse_binary_stl(std::string_view bytes, const ParseContext& contex
     builder.reserve(count / 2, count);
     Welder welder(builder);
     std::vector<std::int64_t> corners(3);
+    std::size_t with_attribute = 0;  // faces whose attribute bytes are set: some writers' colours
     for (std::uint32_t t = 0; t < count; ++t) {
         const char* record = bytes.data() + 84 + 50 * static_cast<std::size_t>(t);
         for (int c = 0; c < 3; ++c) {
@@ -88,6 +89,11 @@ TriangleMesh parse_binary_stl(std::string_view bytes, const ParseContext& contex
                 welder.index_of(read_float_le(p), read_float_le(p + 4), read_float_le(p + 8));
         }
         builder.add_polygon(corners);
+        with_attribute += record[48] != 0 || record[49] != 0 ? 1 : 0;
+    }
+    if (with_attribute > 0) {
+        context.warn(std::to_string(with_attribute) +
+                     " faces' attribute bytes (face colours of some writers) left out");
     }
     return builder.finish();
 }

@@ -190,7 +190,16 @@ TEST(ReadMesh, AsciiStlIsWelded) {
 }
 
 TEST(ReadMesh, BinaryStlIsWeldedEvenWhenItStartsWithSolid) {
-    expect_square(parse(binary_stl(), MeshFormat::Stl));
+    std::vector<std::string> warnings;
+    expect_square(parse(binary_stl(), MeshFormat::Stl, &warnings));
+    EXPECT_TRUE(warnings.empty());
+    // A face colour in the attribute bytes, as some writers put it there: left out, and said.
+    std::string colored = binary_stl();
+    colored[84 + 48] = '\x1f';
+    expect_square(parse(colored, MeshFormat::Stl, &warnings));
+    ASSERT_EQ(warnings.size(), 1U);
+    EXPECT_EQ(warnings[0],
+              "test: 1 faces' attribute bytes (face colours of some writers) left out");
 }
 
 // A PLY file's vertex normals, colours (uchar, or 0–1 floats as some tools write them) and
