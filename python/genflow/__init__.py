@@ -1,0 +1,41 @@
+# SPDX-License-Identifier: MIT
+"""genflow: generalized gradient flows of triangle meshes.
+
+Meshes are numpy arrays: V (#V x 3, float64) and F (#F x 3, int32). Errors are raised as
+genflow.InvalidInput (a ValueError), genflow.IoError (an OSError; OutputError one of its kind)
+and genflow.SolverError (a RuntimeError).
+"""
+
+from ._core import (
+    InvalidInput,
+    IoError,
+    OutputError,
+    SolverError,
+    __version__,
+    cotan_stiffness,
+    mass_matrix,
+    pseudo_hausdorff,
+    read_mesh,
+    smooth,
+    surface_distances,
+    validate,
+    vertex_normals,
+    write_mesh,
+)
+
+__all__ = [
+    "InvalidInput",
+    "IoError",
+    "OutputError",
+    "SolverError",
+    "__version__",
+    "cotan_stiffness",
+    "mass_matrix",
+    "pseudo_hausdorff",
+    "read_mesh",
+    "smooth",
+    "surface_distances",
+    "validate",
+    "vertex_normals",
+    "write_mesh",
+]
