@@ -22,5 +22,6 @@ void bind_io(pybind11::module_& module);
 void bind_operators(pybind11::module_& module);
 void bind_smoothing(pybind11::module_& module);
 void bind_distances(pybind11::module_& module);
+void bind_match(pybind11::module_& module);
 
 }  // namespace genflow::python

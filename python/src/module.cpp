@@ -23,4 +23,5 @@ PYBIND11_MODULE(_core, module) {
     genflow::python::bind_operators(module);
     genflow::python::bind_smoothing(module);
     genflow::python::bind_distances(module);
+    genflow::python::bind_match(module);
 }

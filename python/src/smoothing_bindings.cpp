@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <map>
+#include <optional>
 
 #include "bindings.h"
 #include "genflow/exceptions.h"
@@ -48,19 +49,24 @@ py::tuple smooth(const Eigen::Ref<const RowMatrixX3d>& V, const Eigen::Ref<const
     options.lambda = lambda;
     options.volume_lambda = volume_lambda;
     options.fix_boundary = fix_boundary;
-    bool interrupted = false;
+    std::optional<py::error_already_set> interrupt;
     options.progress = [&](const FlowProgress&) {
+        if (interrupt) {
+            return false;
+        }
         const py::gil_scoped_acquire gil;
-        interrupted = PyErr_CheckSignals() != 0;
-        return !interrupted;
+        if (PyErr_CheckSignals() != 0) {
+            interrupt = py::error_already_set();
+        }
+        return !interrupt;
     };
     FlowResult result;
     {
         const py::gil_scoped_release released;
         result = flow(mesh, options);
     }
-    if (interrupted) {
-        throw py::error_already_set();
+    if (interrupt) {
+        throw *interrupt;
     }
     if (!result.ok()) {
         throw SolverError("smooth: the flow failed after " + std::to_string(result.steps) +

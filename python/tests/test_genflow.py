@@ -4,7 +4,10 @@ properties, smoothing, distances against analytic values, the gradient against f
 differences, and the exceptions."""
 
 import os
+import signal
 import tempfile
+import threading
+import time
 import unittest
 
 import numpy as np
@@ -145,6 +148,21 @@ class Smoothing(unittest.TestCase):
         self.assertLess(abs(radii.mean() - 1), 0.02)
 
 
+    def test_ctrl_c_stops_a_long_flow(self):
+        V, F = sphere(3)
+        timer = threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT))
+        start = time.monotonic()
+        timer.start()
+        try:
+            with self.assertRaises(KeyboardInterrupt):
+                # Steps so small that the sphere never degenerates: only Ctrl-C ends it.
+                genflow.smooth(V, F, method="fairing", steps=10**7, time_step=1e-9)
+        finally:
+            timer.cancel()
+            timer.join()
+        self.assertLess(time.monotonic() - start, 30)
+
+
 class Distances(unittest.TestCase):
     def test_concentric_spheres_are_the_difference_of_their_radii_apart(self):
         V, F = sphere(3)
@@ -171,6 +189,54 @@ class Distances(unittest.TestCase):
             # per cent of it (docs/formulas.md, section 8).
             self.assertAlmostEqual(gradient[vertex, axis], (ahead - behind) / (2 * step),
                                    delta=0.1 * abs(gradient[vertex, axis]) + 1e-9)
+
+
+class Matching(unittest.TestCase):
+    """A sphere matched onto an ellipsoid sampled more finely and moved: the deformed template
+    lies on the target, and the match reports its progress and stops when asked."""
+
+    def setUp(self):
+        self.V, self.F = sphere(2)
+        target, self.FT = sphere(3)
+        self.VT = target * np.array([1.3, 1.0, 0.8]) + np.array([0.5, -0.2, 0.1])
+
+    def test_the_deformed_template_lies_on_the_target(self):
+        steps = []
+        result = genflow.match(self.V, self.F, self.VT, self.FT, prior="h1", iterations=60,
+                               progress=lambda p: steps.append(p["step"]) or True)
+        self.assertEqual(result["V"].shape, self.V.shape)
+        self.assertGreater(len(steps), 0)
+        self.assertGreater(len(result["levels"]), 0)
+        d = genflow.surface_distances(result["V"], self.F, self.VT, self.FT)
+        diagonal = np.linalg.norm(self.VT.max(axis=0) - self.VT.min(axis=0))
+        self.assertLess(d["mean"], 0.01 * diagonal)
+        correspondence = result["correspondence"]
+        self.assertEqual(correspondence["faces"].shape, (len(self.V),))
+        self.assertTrue(np.all((0 <= correspondence["faces"]) & (correspondence["faces"] < len(self.FT))))
+        np.testing.assert_allclose(correspondence["barycentric"].sum(axis=1), 1.0, atol=1e-9)
+
+    def test_progress_returning_false_stops_the_match(self):
+        calls = []
+        genflow.match(self.V, self.F, self.VT, self.FT, iterations=60,
+                      progress=lambda p: calls.append(p) or len(calls) < 3)
+        self.assertEqual(len(calls), 3)
+
+    def test_ctrl_c_and_errors_in_progress_stop_it_and_are_raised(self):
+        def interrupt(p):
+            if p["step"] == 2:
+                os.kill(os.getpid(), signal.SIGINT)
+            return True
+
+        with self.assertRaises(KeyboardInterrupt):
+            genflow.match(self.V, self.F, self.VT, self.FT, iterations=60, progress=interrupt)
+
+        def fail(p):
+            raise RuntimeError("stop here")
+
+        with self.assertRaisesRegex(RuntimeError, "stop here"):
+            genflow.match(self.V, self.F, self.VT, self.FT, progress=fail)
+        with self.assertRaises(genflow.InvalidInput):
+            genflow.match(self.V, self.F, self.VT, self.FT, prior="stiff")
 
 
 if __name__ == "__main__":
