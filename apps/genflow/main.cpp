@@ -11,7 +11,9 @@
 #include "commands.h"
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
+#include "genflow/threads.h"
 #include "genflow/version.h"
+#include "number_checks.h"
 #include "reports.h"
 
 namespace {
@@ -56,6 +58,14 @@ int main(int argc, char** argv) {
     genflow::remove_temporaries_on_signals();
     set_command_line(argc, argv);
     app.require_subcommand(1);
+    // --threads anywhere on the line (fallthrough: after the command's own options too), set
+    // before the command runs.
+    app.fallthrough();
+    app.add_option_function<int>(
+           "--threads", [](int count) { genflow::set_thread_count(count); },
+           "Threads of the parallel sums (default: OMP_NUM_THREADS, else every core); results "
+           "do not depend on it")
+        ->check(positive_number());
     register_info_command(app);
     register_smooth_command(app);
     register_distance_command(app);

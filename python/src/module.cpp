@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
+#include "genflow/threads.h"
 #include "genflow/version.h"
 
 namespace genflow::python {
@@ -24,4 +25,8 @@ PYBIND11_MODULE(_core, module) {
     genflow::python::bind_smoothing(module);
     genflow::python::bind_distances(module);
     genflow::python::bind_match(module);
+    module.def("set_thread_count", &genflow::set_thread_count, pybind11::arg("count"),
+               "Threads of genflow's parallel sums from now on (results do not depend on it).");
+    module.def("thread_count", &genflow::thread_count,
+               "The number of threads genflow's parallel sums use.");
 }

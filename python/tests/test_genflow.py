@@ -163,6 +163,21 @@ class Smoothing(unittest.TestCase):
         self.assertLess(time.monotonic() - start, 30)
 
 
+class Threads(unittest.TestCase):
+    def test_the_count_is_set_and_results_do_not_depend_on_it(self):
+        V, F = sphere(3)
+        before = genflow.thread_count()
+        values = []
+        for count in (1, 2):
+            genflow.set_thread_count(count)
+            self.assertEqual(genflow.thread_count(), count)
+            values.append(genflow.pseudo_hausdorff(V, F, 1.1 * V, F)[0])
+        genflow.set_thread_count(before)
+        self.assertEqual(values[0], values[1])
+        with self.assertRaises(genflow.InvalidInput):
+            genflow.set_thread_count(0)
+
+
 class Distances(unittest.TestCase):
     def test_concentric_spheres_are_the_difference_of_their_radii_apart(self):
         V, F = sphere(3)

@@ -141,6 +141,7 @@ TEST_F(HostileInput, EveryRefusalIsOneLineWithItsExitCodeAndChangesNoFile) {
          "c.ply: cannot be written: the directory"},
         {"distance s.ply s.ply --colored c.xyz", 2, "c.xyz: cannot write this format"},
         {"smooth s.ply o.ply --report r.txt", 2, "r.txt: a report is an HTML page"},
+        {"distance s.ply s.ply --threads 0", 2, "--threads: must be a positive number, got 0"},
         {"smooth s.ply o.ply --frames nodir/a.glb", 1, "a.glb: cannot be written: the directory"},
         {"distance s.ply s.ply --report nodir/r.html", 1,
          "r.html: cannot be written: the directory"},
@@ -221,6 +222,14 @@ TEST_F(HostileInput, ResultsAreTheSameOnAnyNumberOfThreads) {
     }
     EXPECT_EQ(outputs[1], outputs[0]);
     EXPECT_EQ(outputs[2], outputs[0]);
+    // --threads overrides the environment, after the command's options as before them.
+    for (const char* where :
+         {"--threads 3 distance a.ply b.ply --json", "distance a.ply b.ply --json --threads 3"}) {
+        const test::CliResult result = test::run_genflow_after(
+            "cd " + quoted(directory.path()) + " && OMP_NUM_THREADS=1 ", where);
+        ASSERT_EQ(result.exit_code, 0) << result.err;
+        EXPECT_EQ(result.out, outputs[0]) << where;
+    }
 }
 
 }  // namespace
