@@ -43,6 +43,7 @@
 #include "genflow/spatial/point_cloud_surface.h"
 #include "match_flags.h"
 #include "number_checks.h"
+#include "shard.h"
 
 namespace genflow::cli {
 
@@ -140,29 +141,6 @@ ReferenceSymmetry symmetry_of(const std::vector<Shape>& shapes) {
         units.push_back(std::sqrt(surface_area(shape.mesh)));
     }
     return estimate_reference_symmetry(positions, units);
-}
-
-// "i/N" → the pairs at positions p with p mod N = i.
-std::vector<ShapePair> shard_of(std::vector<ShapePair> pairs, const std::string& shard) {
-    if (shard.empty()) {
-        return pairs;
-    }
-    const auto slash = shard.find('/');
-    std::size_t index = 0;
-    std::size_t count = 0;
-    const auto parse = [](std::string_view text, std::size_t& value) {
-        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        return error == std::errc() && end == text.data() + text.size() && !text.empty();
-    };
-    if (slash == std::string::npos || !parse(std::string_view(shard).substr(0, slash), index) ||
-        !parse(std::string_view(shard).substr(slash + 1), count) || count == 0 || index >= count) {
-        throw InvalidInput("--shard: expected i/N with 0 <= i < N, got '" + shard + "'");
-    }
-    std::vector<ShapePair> share;
-    for (std::size_t p = index; p < pairs.size(); p += count) {
-        share.push_back(pairs[p]);
-    }
-    return share;
 }
 
 double mean_of(const Eigen::VectorXd& values) {

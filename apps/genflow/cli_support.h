@@ -27,6 +27,10 @@ enum ExitCode : int {
     kBadInput = 2,  ///< an input file or an argument was refused
 };
 
+/// Thrown by a command that ran to its end but some of whose work failed, as its output has
+/// said (a batch with failed targets): main() exits with kFailure and prints nothing more.
+struct SomeWorkFailed {};
+
 /// A mesh read by the CLI, with everything that was noticed on the way.
 struct LoadedMesh {
     std::filesystem::path path;

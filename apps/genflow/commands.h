@@ -14,5 +14,6 @@ void register_match_command(CLI::App& app);
 void register_eval_command(CLI::App& app);
 void register_benchmark_command(CLI::App& app);
 void register_transfer_command(CLI::App& app);
+void register_batch_command(CLI::App& app);
 
 }  // namespace genflow::cli

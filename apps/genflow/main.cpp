@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
     register_distance_command(app);
     register_match_command(app);
     register_transfer_command(app);
+    register_batch_command(app);
     register_eval_command(app);
     register_benchmark_command(app);
     register_demo_command(app);
@@ -84,6 +85,8 @@ int main(int argc, char** argv) {
         return kBadInput;
     } catch (const genflow::OutputError& e) {
         std::cerr << "genflow: " << printable(e.what()) << '\n';
+        return kFailure;
+    } catch (const SomeWorkFailed&) {
         return kFailure;
     } catch (const genflow::IoError& e) {
         std::cerr << "genflow: " << printable(e.what()) << '\n';

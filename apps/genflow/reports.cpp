@@ -117,6 +117,10 @@ void set_command_line(int argc, char** argv) {
     stored_command_line() = line;
 }
 
+const std::string& command_line() {
+    return stored_command_line();
+}
+
 void check_report_output(const std::string& path) {
     const std::string extension = std::filesystem::path(path).extension().string();
     if (extension != ".html" && extension != ".htm") {

@@ -16,6 +16,9 @@ namespace genflow::cli {
 /// Remembers the command line as typed, for the reports to show (called once by main()).
 void set_command_line(int argc, char** argv);
 
+/// The command line as set_command_line() remembered it, each word shell-quoted as needed.
+[[nodiscard]] const std::string& command_line();
+
 /// Checks --report before any work: a name ending in .html or .htm, in a place it can be
 /// written (check_output_path()); throws IoError naming the path otherwise.
 void check_report_output(const std::string& path);
