@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev libsuitesparse-dev libnanoflann-dev libmeshoptimizer-dev libcli11-dev nlohmann-json3-dev
   libspectra-dev
   libtinygltf-dev libjs-three
-  pybind11-dev python3-dev python3-numpy python3-scipy
+  pybind11-dev python3-dev python3-numpy python3-scipy python3-distributed
   libgtest-dev libbenchmark-dev libpng-dev chromium
   libopenblas0-pthread
   clang clang-format libfuzzer-14-dev

@@ -1,0 +1,80 @@
+# SPDX-License-Identifier: MIT
+"""One template matched onto many targets from Python, serially or spread over a Dask cluster.
+
+Each target's result goes to OUTPUT_DIR as NAME.ply (the deformed template),
+NAME.correspondence.npy (per template vertex a row: the target face, and the barycentric
+coordinates on its corners) and NAME.json (the record), NAME the target's file name without its
+extension. Every target is matched by
+the same function wherever it runs, so a Dask run writes the same bytes as a serial one.
+
+    from dask.distributed import Client, LocalCluster
+    import genflow.batch
+    with LocalCluster(n_workers=2, threads_per_worker=1) as cluster, Client(cluster) as client:
+        records = genflow.batch.run_dask(client, "template.ply", targets, "out", prior="rigid")
+"""
+
+import io
+import json
+import os
+import time
+
+import numpy as np
+
+from . import _core
+
+
+def _name(target):
+    return os.path.splitext(os.path.basename(target))[0]
+
+
+def _write_atomically(path, data):
+    temporary = path + ".tmp-%d" % os.getpid()
+    with open(temporary, "wb") as file:
+        file.write(data)
+    os.replace(temporary, path)
+
+
+def match_one(template, target, output_dir, threads=1, **options):
+    """Matches the template file onto the target file with genflow.match(**options), writes the
+    target's outputs and returns its record (name, target, status, seconds, error if failed).
+    A failure is recorded, not raised, so that a batch goes on."""
+    _core.set_thread_count(threads)
+    name = _name(target)
+    record = {"name": name, "target": target, "genflow": _core.__version__, "options": options}
+    start = time.monotonic()
+    try:
+        V, F = _core.read_mesh(template)
+        VT, FT = _core.read_mesh(target)
+        result = _core.match(V, F, VT, FT, **options)
+        _core.write_mesh(os.path.join(output_dir, name + ".ply"), result["V"], F)
+        # .npy holds no time stamp (unlike .npz): the same result gives the same bytes.
+        rows = np.column_stack([result["correspondence"]["faces"].astype(np.float64),
+                                result["correspondence"]["barycentric"]])
+        correspondence = io.BytesIO()
+        np.save(correspondence, rows)
+        _write_atomically(os.path.join(output_dir, name + ".correspondence.npy"),
+                          correspondence.getvalue())
+        record.update(status="matched", pseudo_hausdorff=result["pseudo_hausdorff"],
+                      converged=result["converged"])
+    except (_core.InvalidInput, _core.IoError, _core.SolverError) as error:
+        record.update(status="failed", error=str(error))
+    record["seconds"] = time.monotonic() - start
+    _write_atomically(os.path.join(output_dir, name + ".json"),
+                      (json.dumps(record, sort_keys=True) + "\n").encode())
+    return record
+
+
+def run_serial(template, targets, output_dir, **options):
+    """match_one on every target in turn; the records in the targets' order."""
+    os.makedirs(output_dir, exist_ok=True)
+    return [match_one(template, target, output_dir, **options) for target in targets]
+
+
+def run_dask(client, template, targets, output_dir, **options):
+    """match_one on every target as a task of the Dask client's cluster; the records in the
+    targets' order. The output directory must be one the workers share (one machine, or a
+    shared file system)."""
+    os.makedirs(output_dir, exist_ok=True)
+    futures = client.map(match_one, [template] * len(targets), targets,
+                         [output_dir] * len(targets), pure=False, **options)
+    return client.gather(futures)
