@@ -17,6 +17,7 @@
 #include "genflow/mesh/repair.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/surface_distance.h"
+#include "genflow/version.h"
 #include "progress_bar.h"
 #include "reports.h"
 
@@ -102,6 +103,8 @@ nlohmann::json run_match_job(MatchJob job) {
     }
     const Eigen::Matrix4d alignment = result.initial_alignment.matrix();
     nlohmann::json summary = {
+        {"genflow", std::string(kVersion)},
+        {"command_line", command_line()},  // every option, as given
         {"template", job.template_name},
         {"target", job.target_name},
         {"output", job.output.string()},

@@ -66,6 +66,9 @@ TEST(MatchCli, WritesTheDeformedTemplateCorrespondencesFramesAndSummary) {
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto json = nlohmann::json::parse(result.out);
     EXPECT_EQ(json["prior"], "rigid");
+    EXPECT_EQ(json["genflow"], "0.1.0");  // what made it, and how
+    EXPECT_NE(json["command_line"].get<std::string>().find("--prior rigid --iterations 60"),
+              std::string::npos);
     EXPECT_LT(json["mean_distance_over_diagonal"].get<double>(), 0.01);
     EXPECT_LT(json["hausdorff_over_diagonal"].get<double>(), 0.05);
     EXPECT_EQ(json["levels"].size(), 1u);
