@@ -80,16 +80,10 @@ std::string attribute_name(const std::string& name) {
     return result;
 }
 
-// One mesh, one node, one scene: `mesh` with its attributes, as encode_glb() describes.
-tinygltf::Model model_of(const TriangleMesh& mesh, const VertexAttributes& attributes) {
-    tinygltf::Model model;
-    model.asset.version = "2.0";
-    model.asset.generator = "genflow";
-    model.buffers.emplace_back();
-    tinygltf::Primitive primitive;
-    primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    primitive.attributes["POSITION"] = add_vec3(model, mesh.V, true);
-    primitive.attributes["NORMAL"] = add_vec3(model, vertex_normals(mesh), false);
+// The attributes beside positions and normals: colours (linear), texture coordinates and the
+// named values.
+void add_vertex_attributes(tinygltf::Model& model, tinygltf::Primitive& primitive,
+                           const VertexAttributes& attributes) {
     if (attributes.colors.rows() > 0) {
         Eigen::MatrixX3d linear(attributes.colors.rows(), 3);
         for (Eigen::Index i = 0; i < linear.rows(); ++i) {
@@ -114,6 +108,31 @@ tinygltf::Model model_of(const TriangleMesh& mesh, const VertexAttributes& attri
         primitive.attributes[attribute_name(name)] = add_accessor(
             model, floats, TINYGLTF_TYPE_SCALAR, floats.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
     }
+}
+
+// A matte grey, both sides drawn (an open surface is seen from inside too); vertex colours
+// multiply it, so it is white where there are colours.
+tinygltf::Material matte_material(bool colored) {
+    tinygltf::Material material;
+    material.doubleSided = true;
+    const double grey = colored ? 1.0 : 0.8;
+    material.pbrMetallicRoughness.baseColorFactor = {grey, grey, grey, 1.0};
+    material.pbrMetallicRoughness.metallicFactor = 0;
+    material.pbrMetallicRoughness.roughnessFactor = 0.8;
+    return material;
+}
+
+// One mesh, one node, one scene: `mesh` with its attributes, as encode_glb() describes.
+tinygltf::Model model_of(const TriangleMesh& mesh, const VertexAttributes& attributes) {
+    tinygltf::Model model;
+    model.asset.version = "2.0";
+    model.asset.generator = "genflow";
+    model.buffers.emplace_back();
+    tinygltf::Primitive primitive;
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    primitive.attributes["POSITION"] = add_vec3(model, mesh.V, true);
+    primitive.attributes["NORMAL"] = add_vec3(model, vertex_normals(mesh), false);
+    add_vertex_attributes(model, primitive, attributes);
     std::vector<std::uint32_t> indices(static_cast<std::size_t>(mesh.F.size()));
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
         for (int c = 0; c < 3; ++c) {
@@ -122,15 +141,7 @@ tinygltf::Model model_of(const TriangleMesh& mesh, const VertexAttributes& attri
     }
     primitive.indices = add_accessor(model, indices, TINYGLTF_TYPE_SCALAR, indices.size(),
                                      TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    // A matte grey, both sides drawn (an open surface is seen from inside too); vertex colours
-    // multiply it, so it is white where there are colours.
-    tinygltf::Material material;
-    material.doubleSided = true;
-    const double grey = attributes.colors.rows() > 0 ? 1.0 : 0.8;
-    material.pbrMetallicRoughness.baseColorFactor = {grey, grey, grey, 1.0};
-    material.pbrMetallicRoughness.metallicFactor = 0;
-    material.pbrMetallicRoughness.roughnessFactor = 0.8;
-    model.materials.push_back(material);
+    model.materials.push_back(matte_material(attributes.colors.rows() > 0));
     primitive.material = 0;
     tinygltf::Mesh gltf_mesh;
     gltf_mesh.primitives.push_back(primitive);
