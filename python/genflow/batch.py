@@ -34,13 +34,32 @@ def _write_atomically(path, data):
     os.replace(temporary, path)
 
 
-def match_one(template, target, output_dir, threads=1, **options):
+def shard(targets, index, count):
+    """Every count-th target from the index-th, as genflow batch --shard index/count takes them:
+    the count shards take every target once."""
+    if not 0 <= index < count:
+        raise ValueError("shard: expected 0 <= index < count, got %d/%d" % (index, count))
+    return targets[index::count]
+
+
+def _finished(output_dir, name):
+    """Whether an earlier run left all of the target's outputs (written whole, each atomically;
+    the record last)."""
+    return all(os.path.exists(os.path.join(output_dir, name + suffix))
+               for suffix in (".ply", ".correspondence.npy", ".json"))
+
+
+def match_one(template, target, output_dir, threads=1, resume=False, **options):
     """Matches the template file onto the target file with genflow.match(**options), writes the
     target's outputs and returns its record (name, target, status, seconds, error if failed).
-    A failure is recorded, not raised, so that a batch goes on."""
-    _core.set_thread_count(threads)
+    A failure is recorded, not raised, so that a batch goes on. With resume, a target an
+    earlier run finished is not matched again (status "done before")."""
     name = _name(target)
     record = {"name": name, "target": target, "genflow": _core.__version__, "options": options}
+    if resume and _finished(output_dir, name):
+        record["status"] = "done before"
+        return record
+    _core.set_thread_count(threads)
     start = time.monotonic()
     try:
         V, F = _core.read_mesh(template)

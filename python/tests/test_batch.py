@@ -64,5 +64,20 @@ class Batch(unittest.TestCase):
         self.assertEqual(self.outputs(dask_dir), written)
 
 
+    def test_resume_skips_what_an_earlier_run_finished_and_shards_share_the_targets(self):
+        out = os.path.join(self.directory.name, "out")
+        first = genflow.batch.run_serial(self.template, self.targets, out, iterations=20)
+        written = self.outputs(out)
+        again = genflow.batch.run_serial(self.template, self.targets, out, iterations=20,
+                                         resume=True)
+        self.assertEqual([r["status"] for r in again], ["done before"] * 3 + ["failed"])
+        self.assertEqual(self.outputs(out), written)
+        self.assertEqual([r["status"] for r in first], ["matched"] * 3 + ["failed"])
+        shares = [genflow.batch.shard(self.targets, i, 3) for i in range(3)]
+        self.assertEqual(sorted(sum(shares, [])), sorted(self.targets))
+        with self.assertRaises(ValueError):
+            genflow.batch.shard(self.targets, 3, 3)
+
+
 if __name__ == "__main__":
     unittest.main()
