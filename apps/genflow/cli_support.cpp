@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "cli_support.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <iomanip>
@@ -126,6 +128,15 @@ std::vector<std::pair<std::string, Eigen::VectorXd>> result_values(
         values.emplace_back("error", (deformed.V - *ground_truth).rowwise().norm());
     }
     return values;
+}
+
+bool has_extension(const std::filesystem::path& path, std::string_view extension) {
+    const std::string given = path.extension().string();
+    return std::equal(given.begin(), given.end(), extension.begin(), extension.end(),
+                      [](char a, char b) {
+                          return std::tolower(static_cast<unsigned char>(a)) ==
+                                 std::tolower(static_cast<unsigned char>(b));
+                      });
 }
 
 void check_mesh_output(const std::string& path) {

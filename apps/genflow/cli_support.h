@@ -83,6 +83,10 @@ void write_mesh_with(const std::filesystem::path& path, const TriangleMesh& mesh
 [[nodiscard]] std::vector<std::pair<std::string, Eigen::VectorXd>> result_values(
     const TriangleMesh& deformed, const TriangleMesh& target, const Eigen::MatrixX3d* ground_truth);
 
+/// Whether `path` ends in `extension` (".glb"), in any case: a file's kind is its extension's,
+/// however it is spelled.
+[[nodiscard]] bool has_extension(const std::filesystem::path& path, std::string_view extension);
+
 /// Checks a mesh output before any work: a format genflow writes (IoError "<path>: cannot write
 /// this format ...") and a place it can be written (check_output_path()).
 void check_mesh_output(const std::string& path);

@@ -21,21 +21,13 @@ std::string frame_name(int number) {
     return name.str();
 }
 
-bool is_glb(const std::filesystem::path& path) {
-    std::string extension = path.extension().string();
-    for (char& c : extension) {
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    }
-    return extension == ".glb";
-}
-
 }  // namespace
 
 FrameSink::FrameSink(std::optional<std::filesystem::path> path) : path_(std::move(path)) {
     if (!path_) {
         return;
     }
-    animated_ = is_glb(*path_);
+    animated_ = has_extension(*path_, ".glb");
     if (animated_) {
         check_output_path(*path_);
     } else {

@@ -122,8 +122,7 @@ const std::string& command_line() {
 }
 
 void check_report_output(const std::string& path) {
-    const std::string extension = std::filesystem::path(path).extension().string();
-    if (extension != ".html" && extension != ".htm") {
+    if (!has_extension(path, ".html") && !has_extension(path, ".htm")) {
         throw IoError(path + ": a report is an HTML page (expected a name ending in .html)");
     }
     check_output_path(path);

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <memory>
 
 #include "commands.h"
@@ -23,18 +22,6 @@
 namespace genflow::cli {
 
 namespace {
-
-using SmoothingMethod = FlowResult (*)(const TriangleMesh&, const SmoothingOptions&);
-
-const std::map<std::string, SmoothingMethod>& methods() {
-    static const std::map<std::string, SmoothingMethod> table = {
-        {"mcf", &mean_curvature_flow},
-        {"fairing", &implicit_fairing},
-        {"fairing2", &higher_order_fairing},
-        {"volume-fairing", &volume_controlled_fairing},
-    };
-    return table;
-}
 
 struct SmoothCommandOptions {
     std::string input;
@@ -134,7 +121,7 @@ void run_smooth(SmoothCommandOptions options) {
         }
         return true;
     };
-    const FlowResult result = methods().at(options.method)(loaded.mesh, options.smoothing);
+    const FlowResult result = smoothing_flow(options.method).run(loaded.mesh, options.smoothing);
     bar.finish();
     if (!result.ok()) {
         throw SolverError("smoothing failed after " + std::to_string(result.steps) + " steps (" +
@@ -168,8 +155,8 @@ void register_smooth_command(CLI::App& app) {
     command->add_option("input", options->input, "Input mesh (.obj, .ply, .off, .stl)")->required();
     command->add_option("output", options->output, "Output mesh (.obj, .ply, .off)")->required();
     std::vector<std::string> names;
-    for (const auto& [name, method] : methods()) {
-        names.push_back(name);
+    for (const SmoothingFlow& flow : smoothing_flows()) {
+        names.emplace_back(flow.name);
     }
     command
         ->add_option("--method", options->method,

@@ -4,7 +4,6 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
-#include <map>
 #include <optional>
 
 #include "bindings.h"
@@ -17,31 +16,12 @@ namespace genflow::python {
 
 namespace {
 
-using Method = FlowResult (*)(const TriangleMesh&, const SmoothingOptions&);
-
-Method method_named(const std::string& name) {
-    static const std::map<std::string, Method> methods = {
-        {"mcf", &mean_curvature_flow},
-        {"fairing", &implicit_fairing},
-        {"fairing2", &higher_order_fairing},
-        {"volume-fairing", &volume_controlled_fairing},
-    };
-    const auto found = methods.find(name);
-    if (found == methods.end()) {
-        throw InvalidInput(
-            "smooth: method must be 'mcf', 'fairing', 'fairing2' or "
-            "'volume-fairing', got '" +
-            name + "'");
-    }
-    return found->second;
-}
-
 // The flow runs without the GIL; each step takes it back to look for Ctrl-C (or another
 // signal's exception), which stops the flow and is raised once it has returned.
 py::tuple smooth(const Eigen::Ref<const RowMatrixX3d>& V, const Eigen::Ref<const RowMatrixX3i>& F,
                  const std::string& method, int steps, double time_step,
                  std::optional<double> lambda, double volume_lambda, bool fix_boundary) {
-    const Method flow = method_named(method);
+    const SmoothingFlow& flow = smoothing_flow(method);
     const TriangleMesh mesh = mesh_of(V, F);
     SmoothingOptions options;
     options.steps = steps;
@@ -63,7 +43,7 @@ py::tuple smooth(const Eigen::Ref<const RowMatrixX3d>& V, const Eigen::Ref<const
     FlowResult result;
     {
         const py::gil_scoped_release released;
-        result = flow(mesh, options);
+        result = flow.run(mesh, options);
     }
     if (interrupt) {
         throw *interrupt;

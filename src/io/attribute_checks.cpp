@@ -19,6 +19,14 @@ bool is_ply_name(const std::string& name) {
 
 }  // namespace
 
+void check_face_indices(const std::string& who, const Eigen::MatrixX3i& faces,
+                        Eigen::Index vertices) {
+    if (faces.size() > 0 && (faces.minCoeff() < 0 || faces.maxCoeff() >= vertices)) {
+        throw InvalidInput(who + ": face indices must lie in [0, " + std::to_string(vertices) +
+                           ")");
+    }
+}
+
 void check_attributes(const std::filesystem::path& path, const TriangleMesh& mesh,
                       const VertexAttributes& attributes) {
     if (attributes.colors.rows() != 0 && attributes.colors.rows() != mesh.V.rows()) {

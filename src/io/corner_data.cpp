@@ -2,6 +2,7 @@
 #include "io/corner_data.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace genflow::detail {
 
@@ -42,6 +43,16 @@ std::optional<Eigen::MatrixXd> per_vertex_rows(const Eigen::MatrixX3i& faces,
 Eigen::MatrixX3i as_faces(const std::vector<int>& triangles) {
     return Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(
         triangles.data(), static_cast<Eigen::Index>(triangles.size() / 3), 3);
+}
+
+void store_texture_coordinates(std::optional<Eigen::MatrixXd> per_vertex, Eigen::MatrixXd table,
+                               Eigen::MatrixX3i corner_rows, VertexAttributes& attributes) {
+    if (per_vertex) {
+        attributes.uvs = std::move(*per_vertex);
+    } else {
+        attributes.corner_uvs = std::move(table);
+        attributes.corner_uv_faces = std::move(corner_rows);
+    }
 }
 
 }  // namespace genflow::detail

@@ -8,6 +8,8 @@
 #include <optional>
 #include <vector>
 
+#include "genflow/io/vertex_attributes.h"
+
 namespace genflow::detail {
 
 /// Appends the fan triangles of a polygon (corners 0, k, k+1) to `triangles`, as
@@ -22,6 +24,12 @@ void append_fan(const std::vector<std::int64_t>& polygon, std::vector<int>& tria
                                                              const Eigen::MatrixXd& table,
                                                              const Eigen::MatrixX3i& corner_rows,
                                                              Eigen::Index vertex_count);
+
+/// Texture coordinates into `attributes`: per vertex where they are (`per_vertex`, from
+/// per_vertex_rows()), else per corner (`table` rows, `corner_rows` per face), so that a seam
+/// loses nothing.
+void store_texture_coordinates(std::optional<Eigen::MatrixXd> per_vertex, Eigen::MatrixXd table,
+                               Eigen::MatrixX3i corner_rows, VertexAttributes& attributes);
 
 /// `triangles` (3 ints each, from append_fan()) as a #F×3 matrix.
 [[nodiscard]] Eigen::MatrixX3i as_faces(const std::vector<int>& triangles);

@@ -35,11 +35,6 @@ std::int64_t record_index(std::string_view token, std::string_view corner, std::
     return zero_based;
 }
 
-// A colour channel given as 0–1, as a byte.
-std::uint8_t unit_to_byte(double value) {
-    return static_cast<std::uint8_t>(std::lround(std::clamp(255 * value, 0.0, 255.0)));
-}
-
 // What the records of one kind (vt or vn) give: their rows and, per face corner, which.
 struct CornerRecords {
     std::vector<double> rows;    // `width` numbers per record
@@ -101,12 +96,7 @@ void store_texture(const std::optional<Settled>& texture, VertexAttributes& attr
     if (!texture) {
         return;
     }
-    if (texture->per_vertex) {
-        attributes.uvs = *texture->per_vertex;
-    } else {
-        attributes.corner_uvs = texture->table;
-        attributes.corner_uv_faces = texture->corners;
-    }
+    store_texture_coordinates(texture->per_vertex, texture->table, texture->corners, attributes);
 }
 
 void store_normals(const std::optional<Settled>& normals, VertexAttributes& attributes,
@@ -209,7 +199,7 @@ TriangleMesh parse_obj(std::string_view bytes, const ParseContext& context,
             if (tokens.size() == 7 && parse_double(tokens[4], rgb[0]) &&
                 parse_double(tokens[5], rgb[1]) && parse_double(tokens[6], rgb[2])) {
                 colors.push_back(
-                    {unit_to_byte(rgb[0]), unit_to_byte(rgb[1]), unit_to_byte(rgb[2])});
+                    {color_byte(rgb[0], true), color_byte(rgb[1], true), color_byte(rgb[2], true)});
             }
         } else if (tokens[0] == "vt") {
             add_record(texture, tokens, 2, context, line_number);

@@ -50,11 +50,9 @@ VertexColumns columns_of(std::string_view keyword) {
             prefix.find("ST") != std::string_view::npos};
 }
 
-// A colour channel: an integer 0–255, or a fraction 0–1 when written with a point or exponent.
-std::uint8_t channel_byte(std::string_view token, double value) {
-    const bool fraction = token.find_first_of(".eE") != std::string_view::npos;
-    return static_cast<std::uint8_t>(
-        std::lround(std::clamp(fraction ? 255 * value : value, 0.0, 255.0)));
+// A colour channel is an integer 0–255, or a fraction 0–1 when written with a point or exponent.
+bool is_fraction(std::string_view token) {
+    return token.find_first_of(".eE") != std::string_view::npos;
 }
 
 // What the vertex lines give beside x y z, read when asked for.
@@ -94,7 +92,8 @@ public:
                 return false;
             }
             if (c < 3) {
-                out_->colors(i, static_cast<Eigen::Index>(c)) = channel_byte(tokens[at], value);
+                out_->colors(i, static_cast<Eigen::Index>(c)) =
+                    color_byte(value, is_fraction(tokens[at]));
             }
         }
         for (int c = 0; columns_.texture && c < 2; ++c, ++at) {

@@ -154,4 +154,9 @@ void for_each_data_line(const std::filesystem::path& path,
     }
 }
 
+std::uint8_t color_byte(double value, bool unit) {
+    const double scaled = unit ? 255 * value : value;
+    return static_cast<std::uint8_t>(std::lround(std::clamp(scaled, 0.0, 255.0)));
+}
+
 }  // namespace genflow::detail

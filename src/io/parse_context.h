@@ -134,4 +134,8 @@ void for_each_data_line(const std::filesystem::path& path,
 /// Case-insensitive ASCII comparison.
 [[nodiscard]] bool iequals(std::string_view a, std::string_view b);
 
+/// A colour channel as a byte: `value` in 0–1 where `unit`, else in 0–255; rounded, and clamped
+/// to the byte's range.
+[[nodiscard]] std::uint8_t color_byte(double value, bool unit);
+
 }  // namespace genflow::detail

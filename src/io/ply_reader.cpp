@@ -342,11 +342,6 @@ VertexExtras vertex_extras(const Element& element, const ParseContext& context) 
     return extras;
 }
 
-std::uint8_t color_byte(double value, bool unit) {
-    const double scaled = unit ? 255 * value : value;
-    return static_cast<std::uint8_t>(std::lround(std::clamp(scaled, 0.0, 255.0)));
-}
-
 // Keeps vertex `row`'s extras (`values`: the row's single properties, by property index).
 void keep_extras(VertexExtras& extras, const std::vector<double>& values) {
     if (VertexExtras::complete(extras.normal)) {
@@ -455,12 +450,8 @@ struct FaceTexture {
             Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(
                 table.data(), static_cast<Eigen::Index>(table.size() / 2), 2);
         const Eigen::MatrixX3i corners = as_faces(triangles);
-        if (const auto per_vertex = per_vertex_rows(mesh.F, rows, corners, mesh.V.rows())) {
-            out.uvs = *per_vertex;
-        } else {
-            out.corner_uvs = rows;
-            out.corner_uv_faces = corners;
-        }
+        store_texture_coordinates(per_vertex_rows(mesh.F, rows, corners, mesh.V.rows()), rows,
+                                  corners, out);
     }
 };
 

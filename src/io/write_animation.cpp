@@ -21,10 +21,7 @@ void check_frames(const std::filesystem::path& path, const Eigen::MatrixX3i& fac
         throw InvalidInput(path.string() + ": an animation needs a frame");
     }
     const Eigen::Index vertices = frames.front().rows();
-    if (faces.size() > 0 && (faces.minCoeff() < 0 || faces.maxCoeff() >= vertices)) {
-        throw InvalidInput(path.string() + ": face indices must lie in [0, " +
-                           std::to_string(vertices) + ")");
-    }
+    detail::check_face_indices(path.string(), faces, vertices);
     for (std::size_t k = 0; k < frames.size(); ++k) {
         if (frames[k].rows() != vertices || !detail::all_finite(frames[k])) {
             throw InvalidInput(path.string() + ": frame " + std::to_string(k) + " needs " +

@@ -352,10 +352,7 @@ void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh,
         throw IoError(path.string() + ": cannot write format '" + path.extension().string() +
                       "' (expected .obj, .ply, .off, .stl or .glb)");
     }
-    if (mesh.F.size() > 0 && (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows())) {
-        throw InvalidInput("write_mesh: face indices must lie in [0, " +
-                           std::to_string(mesh.V.rows()) + ")");
-    }
+    detail::check_face_indices("write_mesh", mesh.F, mesh.V.rows());
     // The readers refuse such a file: what cannot be read back is not written.
     if (!detail::all_finite(mesh.V)) {
         throw InvalidInput(path.string() + ": the mesh to write has non-finite coordinates");

@@ -114,4 +114,26 @@ FlowResult volume_controlled_fairing(const TriangleMesh& mesh, const SmoothingOp
     return area_flow(mesh, options, metric, options.time_step * h * h, Integrator::Implicit);
 }
 
+const std::vector<SmoothingFlow>& smoothing_flows() {
+    static const std::vector<SmoothingFlow> flows = {
+        {"mcf", &mean_curvature_flow},
+        {"fairing", &implicit_fairing},
+        {"fairing2", &higher_order_fairing},
+        {"volume-fairing", &volume_controlled_fairing},
+    };
+    return flows;
+}
+
+const SmoothingFlow& smoothing_flow(std::string_view name) {
+    std::string names;
+    for (const SmoothingFlow& flow : smoothing_flows()) {
+        if (flow.name == name) {
+            return flow;
+        }
+        names += std::string(names.empty() ? "'" : ", '") + std::string(flow.name) + "'";
+    }
+    throw InvalidInput("smooth: method must be one of " + names + ", got '" + std::string(name) +
+                       "'");
+}
+
 }  // namespace genflow

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <optional>
+#include <string_view>
+#include <vector>
 
 #include "genflow/flows/flow.h"
 #include "genflow/mesh.h"
@@ -61,5 +63,18 @@ struct SmoothingOptions {
 /// \throws InvalidInput as `mean_curvature_flow()`, or if volume_lambda is not in (0, 1].
 [[nodiscard]] FlowResult volume_controlled_fairing(const TriangleMesh& mesh,
                                                    const SmoothingOptions& options);
+
+/// A smoothing flow by the name the command line and Python give it.
+struct SmoothingFlow {
+    std::string_view name;  ///< "mcf", "fairing", "fairing2" or "volume-fairing"
+    FlowResult (*run)(const TriangleMesh&, const SmoothingOptions&);
+};
+
+/// Every smoothing flow above, in the order they are declared.
+[[nodiscard]] const std::vector<SmoothingFlow>& smoothing_flows();
+
+/// The flow named `name` (SmoothingFlow::name).
+/// \throws InvalidInput naming the flows if there is none of that name.
+[[nodiscard]] const SmoothingFlow& smoothing_flow(std::string_view name);
 
 }  // namespace genflow
