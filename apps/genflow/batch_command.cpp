@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
 #include "cli_support.h"
@@ -21,6 +22,7 @@
 #include "genflow/version.h"
 #include "match_flags.h"
 #include "match_job.h"
+#include "part_flags.h"
 #include "reports.h"
 #include "shard.h"
 
@@ -35,6 +37,7 @@ struct BatchOptions {
     std::string shard;
     bool resume = false;
     MatchFlags flags;
+    PartFlags parts;
 };
 
 // A target and the name its outputs go by (its file name without the extension).
@@ -138,23 +141,35 @@ bool finished_before(const TargetOutputs& outputs) {
     }
 }
 
-// One target matched as `genflow match` would (the template loaded once); its record.
-nlohmann::json match_target(const BatchOptions& options, const LoadedMesh& template_mesh,
+// The template, loaded once, its part model, and its analyses, kept from the first target on.
+struct BatchTemplate {
+    LoadedMesh loaded;
+    std::optional<PartModel> parts;
+    std::shared_ptr<TemplateCache> cache = std::make_shared<TemplateCache>();
+};
+
+// The template and its part model, checked before any work.
+BatchTemplate batch_template_of(const BatchOptions& options) {
+    BatchTemplate batch_template;
+    batch_template.loaded = load_mesh(options.template_path);
+    batch_template.parts =
+        part_model(options.parts, options.template_path, batch_template.loaded.mesh.V.rows());
+    if (!batch_template.parts && resolved(options.flags, false).prior == MatchPrior::Articulated) {
+        throw InvalidInput("batch: --prior articulated needs --parts PARTS.json");
+    }
+    return batch_template;
+}
+
+// One target matched as `genflow match` would; its record.
+nlohmann::json match_target(const BatchOptions& options, const BatchTemplate& batch_template,
                             const Target& target, const TargetOutputs& outputs) {
-    const LoadedMesh loaded = load_target(target.path);
-    MatchJob job;
-    job.template_mesh = template_mesh.mesh;
-    job.template_attributes = carried_attributes(template_mesh, true);
-    job.target = loaded.mesh;
-    job.template_name = options.template_path;
-    job.target_name = target.path.string();
-    job.target_points = loaded.points;
-    job.target_normals = loaded.normals;
+    MatchJob job = match_job_for(batch_template.loaded, load_target(target.path), true);
     job.output = outputs.mesh;
     job.correspondence = outputs.correspondence;
     job.summary = outputs.summary;
-    job.options = resolved(options.flags, false);
-    job.progress_bar = false;
+    job.options = resolved(options.flags, batch_template.parts.has_value());
+    job.options.parts = batch_template.parts;
+    job.options.template_cache = batch_template.cache;
     const nlohmann::json summary = run_match_job(std::move(job));
     return {{"status", "matched"},
             {"seconds", summary["seconds"]},
@@ -163,7 +178,7 @@ nlohmann::json match_target(const BatchOptions& options, const LoadedMesh& templ
 }
 
 // A target's record: matched, found complete from an earlier run, or failed with why.
-nlohmann::json run_target(const BatchOptions& options, const LoadedMesh& template_mesh,
+nlohmann::json run_target(const BatchOptions& options, const BatchTemplate& batch_template,
                           const Target& target) {
     const TargetOutputs outputs = outputs_of(options.output_dir, target.name);
     nlohmann::json record;
@@ -171,7 +186,7 @@ nlohmann::json run_target(const BatchOptions& options, const LoadedMesh& templat
         record = {{"status", "done before"}};
     } else {
         try {
-            record = match_target(options, template_mesh, target, outputs);
+            record = match_target(options, batch_template, target, outputs);
         } catch (const std::exception& error) {
             // InvalidInput, IoError, SolverError, bad_alloc: recorded, and the batch goes on.
             record = {{"status", "failed"}, {"error", printable(error.what())}};
@@ -202,20 +217,15 @@ std::filesystem::path record_path(const BatchOptions& options) {
 // The number of targets that failed.
 int run_batch(const BatchOptions& options) {
     const std::vector<Target> share = shard_of(targets_of(options.targets), options.shard);
-    if (options.flags.prior == "articulated") {
-        throw InvalidInput(
-            "batch: --prior articulated needs a part model, which batch does not "
-            "take yet");
-    }
+    const BatchTemplate batch_template = batch_template_of(options);
     create_output_directory(options.output_dir);
     const std::filesystem::path records = record_path(options);
     check_output_path(records);
-    const LoadedMesh template_mesh = load_mesh(options.template_path);
-    print_warnings(template_mesh);
+    print_warnings(batch_template.loaded);
     std::string lines;
     int failed = 0;
     for (std::size_t t = 0; t < share.size(); ++t) {
-        const nlohmann::json record = run_target(options, template_mesh, share[t]);
+        const nlohmann::json record = run_target(options, batch_template, share[t]);
         failed += record["status"] == "failed" ? 1 : 0;
         std::printf("batch: %zu/%zu %s: %s\n", t + 1, share.size(),
                     printable(share[t].name).c_str(), record["status"].get<std::string>().c_str());
@@ -253,6 +263,7 @@ void register_batch_command(CLI::App& app) {
                         "batch.i-of-N.jsonl)");
     command->add_flag("--resume", options->resume,
                       "Skip the targets whose outputs an earlier run finished");
+    add_part_flags(*command, options->parts);
     add_prior_flag(*command, options->flags);
     add_match_flags(*command, options->flags);
     command->callback([options] {

@@ -12,10 +12,10 @@
 #include "genflow/exceptions.h"
 #include "genflow/io/atomic_file.h"
 #include "genflow/io/read_landmarks.h"
-#include "genflow/io/read_part_model.h"
 #include "match_flags.h"
 #include "match_job.h"
 #include "number_checks.h"
+#include "part_flags.h"
 #include "reports.h"
 
 namespace genflow::cli {
@@ -26,10 +26,7 @@ struct MatchCommandOptions {
     std::string template_path;
     std::string target_path;
     std::string output;
-    std::string parts;
-    std::string part_labels;
-    std::string part_weights;
-    std::string parts_pose;
+    PartFlags parts;
     std::string correspondence;
     std::string frames;
     int frame_every = 1;
@@ -88,7 +85,8 @@ void run_match(const MatchCommandOptions& options) {
         print_warnings(target);
         print_point_cloud(target);
     }
-    MatchJob job;
+    const bool quiet = options.json || options.quiet;
+    MatchJob job = match_job_for(template_mesh, target, quiet);
     if (!options.ground_truth.empty()) {
         // Checked before the match, so that a wrong file costs nothing and writes nothing.
         const LoadedMesh truth = load_mesh(options.ground_truth);
@@ -99,13 +97,6 @@ void run_match(const MatchCommandOptions& options) {
         }
         job.ground_truth = truth.mesh.V;
     }
-    job.template_mesh = template_mesh.mesh;
-    job.template_attributes = carried_attributes(template_mesh, options.json || options.quiet);
-    job.target = target.mesh;
-    job.template_name = options.template_path;
-    job.target_name = options.target_path;
-    job.target_points = target.points;
-    job.target_normals = target.normals;
     job.output = options.output;
     if (!options.correspondence.empty()) {
         job.correspondence = options.correspondence;
@@ -123,26 +114,17 @@ void run_match(const MatchCommandOptions& options) {
     if (!options.report.empty()) {
         job.report = options.report;
     }
-    job.options = resolved(options.flags, !options.parts.empty());
+    job.options = resolved(options.flags, !options.parts.tree.empty());
     const std::string prior = to_string(job.options.prior);
-    if (!options.parts.empty()) {
-        PartFiles files{options.parts, std::nullopt, std::nullopt, options.parts_pose};
-        if (!options.part_labels.empty()) {
-            files.labels = options.part_labels;
-        }
-        if (!options.part_weights.empty()) {
-            files.weights = options.part_weights;
-        }
-        files.template_name = std::filesystem::path(options.template_path).stem().string();
-        job.options.parts = read_part_model(files, template_mesh.mesh.V.rows());
-    } else if (job.options.prior == MatchPrior::Articulated) {
+    job.options.parts =
+        part_model(options.parts, options.template_path, template_mesh.mesh.V.rows());
+    if (!job.options.parts && job.options.prior == MatchPrior::Articulated) {
         throw InvalidInput("match: --prior articulated needs --parts PARTS.json");
     }
     if (!options.landmarks.empty()) {
         job.options.landmarks.points =
             read_landmarks(options.landmarks, template_mesh.mesh.V.rows(), target.mesh);
     }
-    job.progress_bar = !options.json && !options.quiet;
     const bool extent_automatic = job.options.partial.extent == TargetExtent::Automatic;
     const nlohmann::json summary = run_match_job(std::move(job));
     if (!options.json) {
@@ -223,25 +205,7 @@ void register_match_command(CLI::App& app) {
         ->required();
     command->add_option("-o,--output", options->output, "Deformed template (.obj, .ply, .off)")
         ->required();
-    CLI::Option* parts = command->add_option(
-        "--parts", options->parts, "Part tree of the template (JSON; layouts in docs/matching.md)");
-    // Labels or weights say which part a vertex is in: one of them, and only with a part tree.
-    CLI::Option* labels =
-        command->add_option("--part-labels", options->part_labels,
-                            "Per-vertex part labels (one index per line), if the JSON names none");
-    command
-        ->add_option("--part-weights", options->part_weights,
-                     "Per-vertex part weights ('vertex part weight' lines), if the JSON "
-                     "names none")
-        ->excludes(labels)
-        ->needs(parts);
-    labels->needs(parts);
-    command
-        ->add_option("--parts-pose", options->parts_pose,
-                     "The pose of the part file the template is in (its joint centres "
-                     "moved there; default: the pose the template's file name, or its last "
-                     "'_'-separated word, names, else the rest pose)")
-        ->needs(parts);
+    add_part_flags(*command, options->parts);
     command->add_option("--landmarks", options->landmarks,
                         "Known correspondences, one per line: 'i x y z' (template vertex i goes "
                         "to the point) or 'i j' (to target vertex j), 0-based, each with an "

@@ -58,6 +58,19 @@ VertexAttributes colored_by_last(VertexAttributes values, double diagonal,
 
 }  // namespace
 
+MatchJob match_job_for(const LoadedMesh& template_mesh, const LoadedMesh& target, bool quiet) {
+    MatchJob job;
+    job.template_mesh = template_mesh.mesh;
+    job.template_attributes = carried_attributes(template_mesh, quiet);
+    job.target = target.mesh;
+    job.template_name = template_mesh.path.string();
+    job.target_name = target.path.string();
+    job.target_points = target.points;
+    job.target_normals = target.normals;
+    job.progress_bar = !quiet;
+    return job;
+}
+
 nlohmann::json run_match_job(MatchJob job) {
     int frame = 0;
     FrameSink sink(job.frames);

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "cli_support.h"
 #include "genflow/io/vertex_attributes.h"
 #include "genflow/matching/match.h"
 
@@ -40,6 +41,12 @@ struct MatchJob {
     MatchOptions options;
     bool progress_bar = true;
 };
+
+/// A job matching `template_mesh` onto `target` as loaded from their files, named by their
+/// paths, the template's attributes carried (carried_attributes()); outputs and options are the
+/// caller's. `quiet`: no progress bar and no warnings.
+[[nodiscard]] MatchJob match_job_for(const LoadedMesh& template_mesh, const LoadedMesh& target,
+                                     bool quiet);
 
 /// Runs the job and returns its summary (also written to job.summary when set). Outputs are
 /// written atomically, only after the match succeeded. The output holds the template's

@@ -5,7 +5,9 @@ Each target's result goes to OUTPUT_DIR as NAME.ply (the deformed template),
 NAME.correspondence.npy (per template vertex a row: the target face, and the barycentric
 coordinates on its corners) and NAME.json (the record), NAME the target's file name without its
 extension. Every target is matched by
-the same function wherever it runs, so a Dask run writes the same bytes as a serial one.
+the same function wherever it runs, so a Dask run writes the same bytes as a serial one. Each
+process reads the template once and keeps its analyses (genflow.TemplateCache) for every target
+it matches.
 
     from dask.distributed import Client, LocalCluster
     import genflow.batch
@@ -49,22 +51,43 @@ def _finished(output_dir, name):
                for suffix in (".ply", ".correspondence.npy", ".json"))
 
 
-def match_one(template, target, output_dir, threads=1, resume=False, **options):
+# This process's template: its file's identity and the part files, and what was made of them.
+_template = {}
+
+
+def _prepared_template(template, parts):
+    """The template's V, F, part model (or None) and TemplateCache, made once per process and
+    template file (a cache keeps everything it is given, so one template at a time)."""
+    status = os.stat(template)
+    key = (os.path.abspath(template), status.st_mtime_ns, status.st_size,
+           json.dumps(parts, sort_keys=True))
+    if _template.get("key") != key:
+        _template.clear()
+        V, F = _core.read_mesh(template)
+        model = _core.read_part_model(vertices=len(V), **parts) if parts else None
+        _template.update(key=key, value=(V, F, model, _core.TemplateCache()))
+    return _template["value"]
+
+
+def match_one(template, target, output_dir, threads=1, resume=False, parts=None, **options):
     """Matches the template file onto the target file with genflow.match(**options), writes the
     target's outputs and returns its record (name, target, status, seconds, error if failed).
-    A failure is recorded, not raised, so that a batch goes on. With resume, a target an
+    parts: genflow.read_part_model's arguments but `vertices` (a dict), for the articulated
+    prior. A failure is recorded, not raised, so that a batch goes on. With resume, a target an
     earlier run finished is not matched again (status "done before")."""
     name = _name(target)
     record = {"name": name, "target": target, "genflow": _core.__version__, "options": options}
+    if parts:
+        record["parts"] = parts
     if resume and _finished(output_dir, name):
         record["status"] = "done before"
         return record
     _core.set_thread_count(threads)
     start = time.monotonic()
     try:
-        V, F = _core.read_mesh(template)
+        V, F, model, cache = _prepared_template(template, parts)
         VT, FT = _core.read_mesh(target)
-        result = _core.match(V, F, VT, FT, **options)
+        result = _core.match(V, F, VT, FT, parts=model, template_cache=cache, **options)
         _core.write_mesh(os.path.join(output_dir, name + ".ply"), result["V"], F)
         # .npy holds no time stamp (unlike .npz): the same result gives the same bytes.
         rows = np.column_stack([result["correspondence"]["faces"].astype(np.float64),
@@ -75,7 +98,7 @@ def match_one(template, target, output_dir, threads=1, resume=False, **options):
                           correspondence.getvalue())
         record.update(status="matched", pseudo_hausdorff=result["pseudo_hausdorff"],
                       converged=result["converged"])
-    except (_core.InvalidInput, _core.IoError, _core.SolverError) as error:
+    except (_core.InvalidInput, OSError, _core.SolverError) as error:  # IoError is an OSError
         record.update(status="failed", error=str(error))
     record["seconds"] = time.monotonic() - start
     _write_atomically(os.path.join(output_dir, name + ".json"),

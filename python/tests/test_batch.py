@@ -63,7 +63,6 @@ class Batch(unittest.TestCase):
         np.testing.assert_allclose(rows[:, 1:].sum(axis=1), 1.0, atol=1e-9)
         self.assertEqual(self.outputs(dask_dir), written)
 
-
     def test_resume_skips_what_an_earlier_run_finished_and_shards_share_the_targets(self):
         out = os.path.join(self.directory.name, "out")
         first = genflow.batch.run_serial(self.template, self.targets, out, iterations=20)
@@ -77,6 +76,30 @@ class Batch(unittest.TestCase):
         self.assertEqual(sorted(sum(shares, [])), sorted(self.targets))
         with self.assertRaises(ValueError):
             genflow.batch.shard(self.targets, 3, 3)
+
+    def test_the_part_model_and_the_template_are_read_once_per_process(self):
+        V, _ = sphere(2)
+        tree = os.path.join(self.directory.name, "parts.json")
+        with open(tree, "w") as file:
+            file.write('{"parts": [{"name": "lower", "parent": null, "joint_center": [0, 0, 0]},'
+                       ' {"name": "upper", "parent": "lower", "joint_center": [0, 0, 0]}]}')
+        labels = os.path.join(self.directory.name, "labels.txt")
+        with open(labels, "w") as file:
+            file.write("".join("%d\n" % (z > 0) for z in V[:, 2]))
+        out = os.path.join(self.directory.name, "parts")
+        parts = {"tree": tree, "labels": labels}
+        records = genflow.batch.run_serial(self.template, self.targets[:2], out,
+                                           prior="articulated", parts=parts, iterations=20)
+        self.assertEqual([r["status"] for r in records], ["matched"] * 2)
+        self.assertEqual(records[0]["parts"], parts)
+        # The second target found the template's analyses the first one left.
+        _, _, model, cache = genflow.batch._prepared_template(self.template, parts)
+        self.assertEqual(model.names, ["lower", "upper"])
+        self.assertGreater(len(cache), 0)
+        missing = genflow.batch.run_serial(os.path.join(self.directory.name, "none.ply"),
+                                           self.targets[:1], out, iterations=20)
+        self.assertEqual(missing[0]["status"], "failed")
+        self.assertIn("none.ply", missing[0]["error"])
 
 
 if __name__ == "__main__":

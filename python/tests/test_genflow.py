@@ -253,6 +253,76 @@ class Matching(unittest.TestCase):
         with self.assertRaises(genflow.InvalidInput):
             genflow.match(self.V, self.F, self.VT, self.FT, prior="stiff")
 
+    def test_the_options_reach_the_match(self):
+        one = genflow.match(self.V, self.F, self.VT, self.FT, levels=1, iterations=20,
+                            align=False, target_extent="complete")
+        self.assertEqual(len(one["levels"]), 1)
+        self.assertFalse(one["partial_target"])
+        two = genflow.match(self.V, self.F, self.VT, self.FT, levels=2, coarse_vertices=100,
+                            iterations=20, fine_iterations=3)
+        self.assertEqual(len(two["levels"]), 2)
+        with self.assertRaisesRegex(genflow.InvalidInput, "target_extent"):
+            genflow.match(self.V, self.F, self.VT, self.FT, target_extent="most")
+        with self.assertRaisesRegex(genflow.InvalidInput, "max_step"):
+            genflow.match(self.V, self.F, self.VT, self.FT, max_step=0.0)
+
+    def test_a_template_cache_gives_the_same_match_and_is_filled_once(self):
+        alone = genflow.match(self.V, self.F, self.VT, self.FT, iterations=30)
+        cache = genflow.TemplateCache()
+        other = self.VT[:, [1, 2, 0]]  # another target: the template's analyses are the same
+        genflow.match(self.V, self.F, other, self.FT, iterations=30, template_cache=cache)
+        kept = len(cache)
+        self.assertGreater(kept, 0)
+        cached = genflow.match(self.V, self.F, self.VT, self.FT, iterations=30,
+                               template_cache=cache)
+        np.testing.assert_array_equal(cached["V"], alone["V"])
+        self.assertEqual(len(cache), kept)
+
+
+class PartModels(unittest.TestCase):
+    """The articulated prior from Python: a part model made from arrays or read from files, and
+    a match under it."""
+
+    def setUp(self):
+        self.V, self.F = sphere(2)
+        # Two parts: the upper half hangs from the lower one at the equator's centre.
+        labels = (self.V[:, 2] > 0).astype(int)
+        self.weights = np.eye(2)[labels]
+        self.labels = labels
+
+    def test_a_model_from_arrays_is_checked_and_drives_an_articulated_match(self):
+        model = genflow.PartModel(["lower", "upper"], [-1, 0], np.zeros((2, 3)), self.weights)
+        self.assertEqual(model.names, ["lower", "upper"])
+        self.assertEqual(model.parents, [-1, 0])
+        np.testing.assert_array_equal(model.weights, self.weights)
+        target = self.V * np.array([1.2, 1.0, 0.9]) + np.array([0.3, 0.0, -0.1])
+        result = genflow.match(self.V, self.F, target, self.F, prior="articulated",
+                               iterations=60, parts=model)
+        d = genflow.surface_distances(result["V"], self.F, target, self.F)
+        diagonal = np.linalg.norm(target.max(axis=0) - target.min(axis=0))
+        self.assertLess(d["mean"], 0.01 * diagonal)
+        with self.assertRaises(genflow.InvalidInput):
+            genflow.match(self.V, self.F, target, self.F, prior="articulated")
+        with self.assertRaises(genflow.InvalidInput):  # rows must sum to 1
+            genflow.PartModel(["lower", "upper"], [-1, 0], np.zeros((2, 3)), 2 * self.weights)
+        with self.assertRaises(genflow.InvalidInput):
+            genflow.PartModel(["lower"], [-1, 0], np.zeros((2, 3)), self.weights)
+
+    def test_a_model_is_read_from_a_tree_and_labels(self):
+        with tempfile.TemporaryDirectory() as directory:
+            tree = os.path.join(directory, "parts.json")
+            with open(tree, "w") as file:
+                file.write('{"parts": [{"name": "lower", "parent": null, "joint_center": [0, 0, 0]},'
+                           ' {"name": "upper", "parent": "lower", "joint_center": [0, 0, 0]}]}')
+            labels = os.path.join(directory, "labels.txt")
+            with open(labels, "w") as file:
+                file.write("".join("%d\n" % label for label in self.labels))
+            model = genflow.read_part_model(tree, len(self.V), labels=labels)
+            self.assertEqual(model.names, ["lower", "upper"])
+            np.testing.assert_array_equal(model.weights, self.weights)
+            with self.assertRaisesRegex(genflow.IoError, "labels.txt"):
+                genflow.read_part_model(tree, len(self.V) + 1, labels=labels)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -181,7 +181,7 @@ private:
     bool add_intrinsic_contender() {
         const Level& level = coarsest();
         try {
-            shapes_.emplace(analyse_intrinsic_shape(level.template_mesh),
+            shapes_.emplace(template_shape(options_.template_cache, level.template_mesh),
                             analyse_intrinsic_shape(level.target));
             intrinsic_ = intrinsic_starts(
                 level.template_mesh, shapes_->first, shapes_->second,

@@ -70,7 +70,7 @@ const AnalysedShapes* FinerLevels::analysed_level(int l) {
     if (analysed_ != l) {
         analysed_ = l;
         try {
-            level_shapes_.emplace(analyse_intrinsic_shape(level(l).template_mesh),
+            level_shapes_.emplace(template_shape(options_.template_cache, level(l).template_mesh),
                                   analyse_intrinsic_shape(level(l).target));
         } catch (const SolverError&) {
             level_shapes_.reset();

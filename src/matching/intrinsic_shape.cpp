@@ -10,6 +10,7 @@
 
 #include "genflow/operators/area.h"
 #include "genflow/operators/laplacian_eigenbasis.h"
+#include "matching/analysis_store.h"
 #include "matching/functional_map.h"
 #include "operators/triangle.h"
 #include "spatial/surface_paths.h"
@@ -84,6 +85,12 @@ IntrinsicShape analyse_intrinsic_shape(const TriangleMesh& mesh) {
     shape.masses = basis.masses / (unit * unit);
     shape.values = (unit * unit) * basis.values;
     return shape;
+}
+
+IntrinsicShape template_shape(const std::shared_ptr<TemplateCache>& template_cache,
+                              const TriangleMesh& template_level) {
+    return *cached<IntrinsicShape>(template_cache, "intrinsic shape", template_level, 0,
+                                   [&] { return analyse_intrinsic_shape(template_level); });
 }
 
 Eigen::MatrixXd turning_functions(const IntrinsicShape& shape,

@@ -6,9 +6,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "genflow/matching/multiresolution.h"
+#include "genflow/matching/template_cache.h"
 #include "genflow/mesh.h"
 
 namespace genflow::detail {
@@ -34,6 +36,10 @@ struct IntrinsicShape {
 /// The analysis of `mesh`.
 /// \throws InvalidInput if the mesh is invalid or has no area.
 [[nodiscard]] IntrinsicShape analyse_intrinsic_shape(const TriangleMesh& mesh);
+
+/// analyse_intrinsic_shape() of a template's level, kept in `template_cache` where there is one.
+[[nodiscard]] IntrinsicShape template_shape(const std::shared_ptr<TemplateCache>& template_cache,
+                                            const TriangleMesh& template_level);
 
 /// Per vertex of the analysed shape, for each pair (a, b) of `sources` (its vertices), in the
 /// order (0, 1), (0, 2), …, (1, 2), …: n · (∇d_a × ∇d_b), the sine of the angle from the way

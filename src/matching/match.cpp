@@ -15,6 +15,7 @@
 #include "genflow/mesh/repair.h"
 #include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
+#include "matching/analysis_store.h"
 #include "matching/carried_back.h"
 #include "matching/coarsest_level.h"
 #include "matching/counterparts.h"
@@ -339,7 +340,8 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // The coarsest level's intrinsic analysis, which judges starts and guides the flows.
     std::optional<detail::SpectralDescriptors> spectral;
     if (prepared.starts.size() > 1 || detail::runs_guided_rounds(options)) {
-        spectral.emplace(prepared.pyramid.back().template_mesh, prepared.pyramid.back().target);
+        spectral.emplace(prepared.pyramid.back().template_mesh, prepared.pyramid.back().target,
+                         options.template_cache);
     }
     const detail::SpectralDescriptors* analysis = spectral ? &*spectral : nullptr;
     clock.end("coarsest analysis");
@@ -347,7 +349,7 @@ MatchResult match_surfaces(const TriangleMesh& template_mesh, const TriangleMesh
     // The finest surfaces' eigenbases, for the stages that read the whole match intrinsically.
     std::optional<detail::FinestBases> bases;
     if (detail::reads_with_signatures(options) || options.counterparts.enabled) {
-        bases = detail::finest_bases(template_mesh, target);
+        bases = detail::finest_bases(template_mesh, target, options.template_cache);
     }
     clock.end("finest bases");
 
@@ -411,10 +413,17 @@ MatchResult match(const TriangleMesh& template_mesh, const TriangleMesh& target,
                   const MatchOptions& given) {
     check_inputs(template_mesh, target, given);
     detail::StageClock clock;
-    const MatchOptions options = with_spread_landmarks(
+    MatchOptions options = with_spread_landmarks(
         detail::resolved_for_target(given, template_mesh, target), template_mesh, target);
+    if (!options.template_cache) {
+        // The signatures' reading asks again for the template's analyses.
+        options.template_cache = std::make_shared<TemplateCache>();
+    }
     const bool partial = detail::matches_partial_target(options);
-    const RepairedSurface repaired_template = repair_surface(template_mesh);
+    const std::shared_ptr<const RepairedSurface> template_repair =
+        detail::cached<RepairedSurface>(options.template_cache, "repair", template_mesh, 0,
+                                        [&] { return repair_surface(template_mesh); });
+    const RepairedSurface& repaired_template = *template_repair;
     // A partial target's pieces are all surface the template must cover.
     const RepairedSurface repaired_target =
         repair_surface(target, {.largest_component_only = !partial});

@@ -9,6 +9,7 @@
 #include "genflow/exceptions.h"
 #include "genflow/operators/area.h"
 #include "genflow/smoothing/smoothing.h"
+#include "matching/analysis_store.h"
 #include "matching/partial_target.h"
 #include "matching/similarity_scale.h"
 #include "matching/stopwatch.h"
@@ -77,6 +78,18 @@ std::vector<Similarity> rigid_starts(const TriangleMesh& template_mesh, const Tr
     return starts;
 }
 
+// A template level's next coarser level and where the level lies on it.
+struct CoarserLevel {
+    CoarseMesh coarse;
+    Embedding embedding;
+};
+
+CoarserLevel coarser_level(const TriangleMesh& finer, Eigen::Index size) {
+    CoarseMesh coarse = coarsen(finer, size);
+    Embedding embedding = embed(finer, coarse);
+    return {std::move(coarse), std::move(embedding)};
+}
+
 // Finest first. The template levels are nested (each coarsened from the previous), so their
 // vertices are subsets of the finer ones; each target level has about as many vertices as
 // the template level when the inputs are alike, and never fewer than half.
@@ -99,10 +112,12 @@ std::vector<Level> build_pyramid(const TriangleMesh& template_mesh, const Triang
         const Level& finer = levels.back();
         const Eigen::Index size = std::max<Eigen::Index>(finer.template_mesh.V.rows() / 4, 100);
         Level coarser;
-        CoarseMesh coarse = coarsen(finer.template_mesh, size);
-        levels.back().embedding = embed(finer.template_mesh, coarse);
-        coarser.template_mesh = std::move(coarse.mesh);
-        for (const Eigen::Index v : coarse.fine_vertex) {
+        const std::shared_ptr<const CoarserLevel> next =
+            cached<CoarserLevel>(options.template_cache, "coarser level", finer.template_mesh, size,
+                                 [&] { return coarser_level(finer.template_mesh, size); });
+        levels.back().embedding = next->embedding;
+        coarser.template_mesh = next->coarse.mesh;
+        for (const Eigen::Index v : next->coarse.fine_vertex) {
             coarser.original_vertex.push_back(finer.original_vertex[static_cast<std::size_t>(v)]);
         }
         // The target coarsened by the template's factor, but to no fewer than half the

@@ -12,6 +12,7 @@
 #include "genflow/matching/multiresolution.h"
 #include "genflow/operators/heat_kernel_signature.h"
 #include "genflow/operators/laplacian_eigenbasis.h"
+#include "matching/analysis_store.h"
 #include "matching/functional_map.h"
 
 namespace genflow::detail {
@@ -57,6 +58,18 @@ CoarseSpectrum coarse_spectrum(const TriangleMesh& coarse) {
     return result;
 }
 
+// A mesh coarsened for the spectral view, and that view.
+struct CoarseView {
+    CoarseMesh coarse;
+    CoarseSpectrum spectrum;
+};
+
+CoarseView coarse_view(const TriangleMesh& mesh, Eigen::Index vertices) {
+    CoarseMesh coarse = coarsen(mesh, vertices);
+    CoarseSpectrum spectrum = coarse_spectrum(coarse.mesh);
+    return {std::move(coarse), std::move(spectrum)};
+}
+
 // 1 for an orthogonal map; lower as the map loses functions (SpectralDescriptors::
 // map_consistency()).
 double mean_singular_value(const Eigen::MatrixXd& map) {
@@ -66,28 +79,32 @@ double mean_singular_value(const Eigen::MatrixXd& map) {
 }  // namespace
 
 SpectralDescriptors::SpectralDescriptors(const TriangleMesh& template_mesh,
-                                         const TriangleMesh& target, Eigen::Index vertices)
+                                         const TriangleMesh& target,
+                                         const std::shared_ptr<TemplateCache>& template_cache,
+                                         Eigen::Index vertices)
     : template_vertices_(template_mesh.V.rows()),
       template_points_(Eigen::MatrixX3d(0, 3)),
       target_points_(Eigen::MatrixX3d(0, 3)) {
-    const CoarseMesh coarse_template = coarsen(template_mesh, vertices);
-    CoarseSpectrum from = coarse_spectrum(coarse_template.mesh);
+    const std::shared_ptr<const CoarseView> template_view =
+        cached<CoarseView>(template_cache, "spectral view", template_mesh, vertices,
+                           [&] { return coarse_view(template_mesh, vertices); });
+    const CoarseSpectrum& from = template_view->spectrum;
     const CoarseMesh coarse_target = coarsen(target, vertices);
     CoarseSpectrum to = coarse_spectrum(coarse_target.mesh);
     if (from.vertex.empty() || to.vertex.empty()) {
         throw InvalidInput("SpectralDescriptors: a mesh has no vertex with area");
     }
     for (const Eigen::Index k : from.vertex) {
-        template_vertex_.push_back(coarse_template.fine_vertex[static_cast<std::size_t>(k)]);
+        template_vertex_.push_back(template_view->coarse.fine_vertex[static_cast<std::size_t>(k)]);
     }
     template_points_ = PointIndex(template_mesh.V(template_vertex_, Eigen::all));
     target_positions_ = coarse_target.mesh.V(to.vertex, Eigen::all);
     target_points_ = PointIndex(target_positions_);
-    template_log_signature_ = std::move(from.log_signature);
+    template_log_signature_ = from.log_signature;
     target_log_signature_ = std::move(to.log_signature);
-    template_functions_ = std::move(from.functions);
+    template_functions_ = from.functions;
     target_functions_ = std::move(to.functions);
-    template_masses_ = std::move(from.masses);
+    template_masses_ = from.masses;
     target_values_ = std::move(to.values);
 }
 

@@ -14,9 +14,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "genflow/energies/pseudo_hausdorff_energy.h"
+#include "genflow/matching/template_cache.h"
 #include "genflow/mesh.h"
 #include "spatial/point_index.h"
 
@@ -26,9 +28,10 @@ class SpectralDescriptors {
 public:
     /// Eigenbases (laplacian_eigenbasis()) and heat kernel signatures (default times) of
     /// `template_mesh` and `target`, each coarsened to about `vertices` first (the eigen-solve
-    /// is dense).
+    /// is dense). The template's are kept in `template_cache`, where there is one.
     /// \throws InvalidInput if a mesh has no vertex with area.
     SpectralDescriptors(const TriangleMesh& template_mesh, const TriangleMesh& target,
+                        const std::shared_ptr<TemplateCache>& template_cache = {},
                         Eigen::Index vertices = 1000);
 
     /// How far a placement of the template disagrees with the target: the median over the

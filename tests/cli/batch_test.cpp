@@ -138,5 +138,54 @@ TEST_F(Batch, RefusesTargetsItCannotTellApartBeforeAnyWork) {
     EXPECT_NE(nowhere.err.find("nosuch: no such directory or list file"), std::string::npos);
 }
 
+// The articulated prior's part model is read once with the template and given to every target,
+// as `genflow match --parts` would use it.
+TEST_F(Batch, TakesThePartModelOfTheArticulatedPrior) {
+    std::ofstream(directory / "parts.json")
+        << R"({"parts": [{"name": "middle", "parent": null, "joint_center": [0, 0, 0]},)"
+        << R"( {"name": "front", "parent": "middle", "joint_center": [1.0, 0, 0]}]})";
+    const TriangleMesh limb = make_limb(3);
+    std::ofstream labels(directory / "labels.txt");
+    for (Eigen::Index i = 0; i < limb.V.rows(); ++i) {
+        labels << (limb.V(i, 0) > 1.0 ? 1 : 0) << "\n";
+    }
+    labels.close();
+    std::ofstream(directory / "list.txt") << "targets/pose1.ply\n";
+    const std::string parts = " --parts " + quoted(directory / "parts.json") + " --part-labels " +
+                              quoted(directory / "labels.txt") + " --iterations 10";
+    const auto batched = run_genflow("batch " + quoted(directory / "template.ply") + " --targets " +
+                                     quoted(directory / "list.txt") + " --output-dir " +
+                                     quoted(directory / "out") + parts);
+    ASSERT_EQ(batched.exit_code, 0) << batched.err;
+    const auto single = run_genflow("match " + quoted(directory / "template.ply") + " " +
+                                    quoted(directory / "targets" / "pose1.ply") + " -o " +
+                                    quoted(directory / "single.ply") + parts + " --quiet");
+    ASSERT_EQ(single.exit_code, 0) << single.err;
+    EXPECT_EQ(read_file(directory / "single.ply"), read_file(directory / "out" / "pose1.ply"));
+    const nlohmann::json summary =
+        nlohmann::json::parse(read_file(directory / "out" / "pose1.json"));
+    EXPECT_EQ(summary["prior"], "articulated");  // the default with a part model
+
+    const auto without = run_genflow("batch " + quoted(directory / "template.ply") + " --targets " +
+                                     quoted(directory / "list.txt") + " --output-dir " +
+                                     quoted(directory / "none") + " --prior articulated");
+    EXPECT_EQ(without.exit_code, 2);
+    EXPECT_NE(without.err.find("--prior articulated needs --parts"), std::string::npos)
+        << without.err;
+    EXPECT_FALSE(std::filesystem::exists(directory / "none"));
+}
+
+TEST_F(Batch, RefusesAListLineThatNamesNoMeshOrPointFile) {
+    std::ofstream(directory / "list.txt") << "targets/pose0.ply\n\ntargets/notes.txt\n";
+    const auto listed =
+        run_genflow("batch " + quoted(directory / "template.ply") + " --targets " +
+                    quoted(directory / "list.txt") + " --output-dir " + quoted(directory / "out"));
+    EXPECT_EQ(listed.exit_code, 2);
+    EXPECT_NE(listed.err.find("list.txt: line 3: 'targets/notes.txt' is not a mesh or point file"),
+              std::string::npos)
+        << listed.err;
+    EXPECT_FALSE(std::filesystem::exists(directory / "out"));
+}
+
 }  // namespace
 }  // namespace genflow

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -12,6 +13,7 @@
 #include "genflow/matching/landmarks.h"
 #include "genflow/matching/partial_target.h"
 #include "genflow/matching/rigid_alignment.h"
+#include "genflow/matching/template_cache.h"
 #include "genflow/mesh.h"
 #include "genflow/metrics/quasi_isometric_metric.h"
 #include "genflow/metrics/subspace_metric.h"
@@ -254,6 +256,10 @@ struct MatchOptions {
     /// the signatures' reading's stages follow the first reading's. Optional; it does not change
     /// the match.
     std::function<void(const MatchStage&)> stages = {};
+    /// The template's analyses from earlier matches of the same template (TemplateCache), found
+    /// there instead of computed again, and this match's kept there; none: match() keeps them
+    /// for itself alone. The result is the same either way.
+    std::shared_ptr<TemplateCache> template_cache = {};
 };
 
 /// One level of a match, coarsest first in MatchResult::levels.
