@@ -56,6 +56,7 @@ nlohmann::json smooth_summary(const SmoothCommandOptions& options, const LoadedM
         {"input", options.input},
         {"output", options.output},
         {"method", options.method},
+        {"freeze_metric", options.smoothing.freeze_metric},
         {"status", to_string(result.status)},
         {"steps", result.steps},
         {"seconds", result.seconds},
@@ -188,6 +189,9 @@ void register_smooth_command(CLI::App& app) {
         ->capture_default_str();
     command->add_flag("--fix-boundary", options->smoothing.fix_boundary,
                       "Keep boundary vertices where they are");
+    command->add_flag("--freeze-metric", options->smoothing.freeze_metric,
+                      "Flow in the metric of the input at every step (fairing: one "
+                      "factorization in all, a solve a step)");
     command->add_flag("--json", options->json, "Print a JSON summary instead of text");
     command->add_option("--frames", options->frames,
                         "Write the input and every k-th step to DIR/frame_NNNNN.ply (float PLY), "

@@ -147,6 +147,16 @@ class Smoothing(unittest.TestCase):
         self.assertLess(radii.std(), np.linalg.norm(noisy, axis=1).std() / 2)
         self.assertLess(abs(radii.mean() - 1), 0.02)
 
+    def test_a_frozen_metric_takes_the_same_first_step_and_another_flow_after(self):
+        V, F = sphere(3)
+        noisy = V + 0.02 * np.random.default_rng(7).standard_normal(V.shape)
+        one, _ = genflow.smooth(noisy, F, method="fairing", steps=1)
+        frozen_one, _ = genflow.smooth(noisy, F, method="fairing", steps=1, freeze_metric=True)
+        np.testing.assert_array_equal(frozen_one, one)
+        five, _ = genflow.smooth(noisy, F, method="fairing", steps=5)
+        frozen_five, info = genflow.smooth(noisy, F, method="fairing", steps=5, freeze_metric=True)
+        self.assertGreater(np.abs(frozen_five - five).max(), 0)
+        self.assertLess(info["energy"][-1], info["energy"][0])
 
     def test_ctrl_c_stops_a_long_flow(self):
         V, F = sphere(3)

@@ -54,7 +54,9 @@ FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, Metric& metr
                     const std::function<bool(const FlowProgress&)>& progress,
                     const StepPolicy& policy, const char* caller) {
     require_valid_mesh(mesh, caller);
-    metric.update(mesh);
+    if (rules.max_steps > 0) {  // no step, no metric: a factorization costs several steps
+        metric.update(mesh);
+    }
     const auto start = std::chrono::steady_clock::now();
     const auto elapsed = [&] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

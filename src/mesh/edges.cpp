@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "mesh/sort_by_vertex.h"
+
 namespace genflow {
 
 namespace {
@@ -18,6 +20,7 @@ struct HalfEdge {
 
 // Every face's half-edges, sorted by key: the faces of one edge end up next to each other.
 std::vector<HalfEdge> sorted_half_edges(const Eigen::MatrixX3i& F) {
+    int vertices = 0;
     std::vector<HalfEdge> edges;
     edges.reserve(static_cast<std::size_t>(3 * F.rows()));
     for (Eigen::Index f = 0; f < F.rows(); ++f) {
@@ -26,11 +29,13 @@ std::vector<HalfEdge> sorted_half_edges(const Eigen::MatrixX3i& F) {
             const int b = F(f, (k + 1) % 3);
             if (a != b) {
                 edges.push_back({{std::min(a, b), std::max(a, b)}, a, b});
+                vertices = std::max({vertices, a + 1, b + 1});
             }
         }
     }
-    std::sort(edges.begin(), edges.end(),
-              [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; });
+    detail::sort_by_vertex(
+        edges, static_cast<std::size_t>(vertices), [](const HalfEdge& e) { return e.key.first; },
+        [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; });
     return edges;
 }
 

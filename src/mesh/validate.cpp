@@ -4,11 +4,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <functional>
 #include <numbers>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "genflow/operators/volume.h"
+#include "mesh/sort_by_vertex.h"
 #include "mesh/union_find.h"
 #include "operators/triangle.h"
 
@@ -155,7 +159,9 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
         std::sort(v.begin(), v.end());
         sorted_faces.emplace_back(v[0], v[1], v[2], f);
     }
-    std::sort(sorted_faces.begin(), sorted_faces.end());
+    detail::sort_by_vertex(
+        sorted_faces, static_cast<std::size_t>(n),
+        [](const auto& face) { return std::get<0>(face); }, std::less<>());
     Tally duplicate{"face"};
     for (std::size_t k = 1; k < sorted_faces.size(); ++k) {
         const auto& [a0, b0, c0, f0] = sorted_faces[k - 1];
@@ -181,10 +187,11 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
             }
         }
     }
-    std::sort(half_edges.begin(), half_edges.end(),
-              [](const EdgeTraversal& x, const EdgeTraversal& y) {
-                  return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
-              });
+    detail::sort_by_vertex(
+        half_edges, static_cast<std::size_t>(n), [](const EdgeTraversal& edge) { return edge.lo; },
+        [](const EdgeTraversal& x, const EdgeTraversal& y) {
+            return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
+        });
 
     // Corners (3f + k) are united across manifold edges: a vertex whose corners end in more than
     // one set has several fans, i.e. is non-manifold.

@@ -10,10 +10,10 @@
 #include "genflow/flows/explicit_euler.h"
 #include "genflow/flows/implicit_euler.h"
 #include "genflow/mesh/edges.h"
-#include "genflow/mesh/validate.h"
 #include "genflow/metrics/l2_metric.h"
 #include "genflow/metrics/sobolev_metric.h"
 #include "genflow/metrics/volume_controlled_metric.h"
+#include "genflow/operators/area.h"
 #include "genflow/operators/cotan_stiffness.h"
 #include "genflow/operators/mass_matrix.h"
 #include "genflow/operators/mesh_size.h"
@@ -23,11 +23,16 @@ namespace genflow {
 
 namespace {
 
-// Checks the mesh and options once and returns the mean edge length h.
+// Checks the mesh and options once and returns the mean edge length h. What a flow cannot
+// start from is checked (validate()'s errors): not the topology, whose findings are warnings,
+// and whose sorting of every edge cost as much as two fairing steps.
 double prepare(const TriangleMesh& mesh, const SmoothingOptions& options, const char* caller) {
-    const ValidationReport report = validate(mesh);
-    if (!report.ok()) {
-        throw InvalidInput(std::string(caller) + ": " + report.first_error());
+    detail::require_valid_mesh(mesh, caller);
+    if (mesh.F.rows() == 0) {
+        throw InvalidInput(std::string(caller) + ": mesh has no faces");
+    }
+    if (!(surface_area(mesh) > 0)) {
+        throw InvalidInput(std::string(caller) + ": every face has zero area");
     }
     if (!detail::finite_above(options.time_step, 0) || options.steps < 0) {
         throw InvalidInput(std::string(caller) +
@@ -52,6 +57,33 @@ FlowOptions flow_options(const SmoothingOptions& options, double time_step) {
     return flow;
 }
 
+// A metric evaluated at the flow's first mesh and kept (SmoothingOptions::freeze_metric).
+class FrozenMetric final : public Metric {
+public:
+    explicit FrozenMetric(Metric& metric) : metric_(metric) {}
+
+    void update(const TriangleMesh& mesh) override {
+        if (!updated_) {
+            metric_.update(mesh);
+            updated_ = true;
+        }
+    }
+    [[nodiscard]] VertexField gradient(const VertexField& dEdX) const override {
+        return metric_.gradient(dEdX);
+    }
+    [[nodiscard]] VertexField apply(const VertexField& U) const override {
+        return metric_.apply(U);
+    }
+    [[nodiscard]] VertexField shifted_gradient(const Eigen::SparseMatrix<double>& A, double dt,
+                                               const VertexField& R) override {
+        return metric_.shifted_gradient(A, dt, R);
+    }
+
+private:
+    Metric& metric_;
+    bool updated_ = false;
+};
+
 enum class Integrator { Explicit, Implicit };
 
 FlowResult area_flow(const TriangleMesh& mesh, const SmoothingOptions& options, Metric& metric,
@@ -60,9 +92,11 @@ FlowResult area_flow(const TriangleMesh& mesh, const SmoothingOptions& options, 
         metric.set_fixed_vertices(boundary_vertices(mesh.F, mesh.V.rows()));
     }
     const FlowOptions flow = flow_options(options, time_step);
+    FrozenMetric frozen(metric);
+    Metric& used = options.freeze_metric ? static_cast<Metric&>(frozen) : metric;
     return integrator == Integrator::Explicit
-               ? explicit_euler(mesh, SurfaceAreaEnergy{}, metric, flow)
-               : implicit_euler(mesh, SurfaceAreaEnergy{}, metric, flow);
+               ? explicit_euler(mesh, SurfaceAreaEnergy{}, used, flow)
+               : implicit_euler(mesh, SurfaceAreaEnergy{}, used, flow);
 }
 
 }  // namespace

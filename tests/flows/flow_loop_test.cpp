@@ -12,6 +12,7 @@
 #include "genflow/exceptions.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/metrics/l2_metric.h"
+#include "genflow/metrics/sobolev_metric.h"
 
 namespace genflow::detail {
 namespace {
@@ -69,6 +70,21 @@ TEST(FlowLoop, EachStoppingRuleEndsTheFlowWithItsStatus) {
                       [](const FlowProgress& p) { return p.step < 2; });
     EXPECT_EQ(result.status, FlowStatus::Cancelled);
     EXPECT_EQ(result.steps, 2);
+}
+
+// A flow of no step needs no metric: its factorization would cost several steps.
+TEST(FlowLoop, AFlowOfNoStepLeavesTheMetricAlone) {
+    Loop loop;
+    H1Metric metric({.lambda = 0.1});
+    const FlowResult none =
+        run_flow(loop.mesh, loop.energy, metric, {.max_steps = 0}, {}, scripted({5}), "test");
+    EXPECT_EQ(none.steps, 0);
+    EXPECT_EQ(none.energy.size(), 1U);  // the input's energy, all the same
+    EXPECT_EQ(metric.symbolic_analyses(), 0);
+    const FlowResult one =
+        run_flow(loop.mesh, loop.energy, metric, {.max_steps = 1}, {}, scripted({5}), "test");
+    EXPECT_EQ(one.steps, 1);
+    EXPECT_EQ(metric.symbolic_analyses(), 1);
 }
 
 TEST(FlowLoop, PolicyStopsAndBreakdownsBecomeStatuses) {

@@ -3,8 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include "genflow/energies/surface_area_energy.h"
 #include "genflow/exceptions.h"
 #include "genflow/mesh/primitives.h"
+#include "genflow/metrics/sobolev_metric.h"
 #include "genflow/operators/area.h"
 #include "genflow/operators/mesh_size.h"
 #include "genflow/operators/volume.h"
@@ -86,6 +88,32 @@ TEST(Smoothing, IsScaleFree) {
     EXPECT_LT(test::relative_error(b.mesh.V / 1000.0, a.mesh.V), 1e-10);
 }
 
+// The frozen metric: the input's H1 metric, factored once, for every step, which is then
+// x ← x − dt·G₀⁻¹·dA/dx(x); its first step is implicit fairing's.
+TEST(Smoothing, AFrozenMetricIsTheInputsForEveryStep) {
+    const TriangleMesh mesh = test::noisy_torus(20, 10, 0.2);
+    const double h = mean_edge_length(mesh);
+    const double dt = 0.5 * h * h;
+    H1Metric metric({.lambda = dt});
+    metric.update(mesh);
+    Eigen::MatrixX3d x = mesh.V;
+    for (int step = 0; step < 4; ++step) {
+        x -= dt * metric.gradient(SurfaceAreaEnergy().differential(TriangleMesh{x, mesh.F}));
+    }
+    const FlowResult frozen =
+        implicit_fairing(mesh, {.time_step = 0.5, .steps = 4, .freeze_metric = true});
+    EXPECT_LT(test::relative_error(frozen.mesh.V, x), 1e-12);
+    const FlowResult one = implicit_fairing(mesh, {.time_step = 0.5, .steps = 1});
+    const FlowResult frozen_one =
+        implicit_fairing(mesh, {.time_step = 0.5, .steps = 1, .freeze_metric = true});
+    EXPECT_EQ(frozen_one.mesh.V, one.mesh.V);
+    const FlowResult moving = implicit_fairing(mesh, {.time_step = 0.5, .steps = 4});
+    EXPECT_GT(test::relative_error(frozen.mesh.V, moving.mesh.V), 1e-6);  // another flow
+    for (std::size_t k = 1; k < frozen.energy.size(); ++k) {
+        EXPECT_LT(frozen.energy[k], frozen.energy[k - 1]);  // still a descent of the area
+    }
+}
+
 TEST(Smoothing, RefusesBadMeshesAndOptions) {
     TriangleMesh mesh = make_icosphere(1);
     EXPECT_THROW((void)implicit_fairing(mesh, {.time_step = -1}), InvalidInput);
@@ -93,6 +121,19 @@ TEST(Smoothing, RefusesBadMeshesAndOptions) {
     mesh.V(0, 0) = NAN;
     EXPECT_THROW((void)implicit_fairing(mesh, {}), InvalidInput);
     EXPECT_THROW((void)mean_curvature_flow(TriangleMesh{}, {}), InvalidInput);
+    // Collinear corners: edges of positive length, no area to flow.
+    TriangleMesh flat{(Eigen::MatrixX3d(3, 3) << 0, 0, 0, 1, 0, 0, 2, 0, 0).finished(),
+                      (Eigen::MatrixX3i(1, 3) << 0, 1, 2).finished()};
+    try {
+        (void)volume_controlled_fairing(flat, {});
+        ADD_FAILURE() << "a flat mesh was smoothed";
+    } catch (const InvalidInput& error) {
+        EXPECT_STREQ(error.what(), "volume_controlled_fairing: every face has zero area");
+    }
+    flat.F.resize(0, 3);
+    EXPECT_THROW((void)implicit_fairing(flat, {}), InvalidInput);
+    flat.F = (Eigen::MatrixX3i(1, 3) << 0, 1, 3).finished();
+    EXPECT_THROW((void)implicit_fairing(flat, {}), InvalidInput);  // an index out of range
 }
 
 }  // namespace

@@ -23,6 +23,10 @@ struct SmoothingOptions {
     /// H1/H2 fairing: the metric's λ in units of h²; unset means λ = dt, the paper's implicit
     /// fairing (§4).
     std::optional<double> lambda = std::nullopt;
+    /// The metric of the input for every step instead of that of each step's mesh: a flow in one
+    /// fixed inner product, as libigl's fairing keeps its cotangent matrix. Fairing (H1, H2) then
+    /// factors once and each step costs a solve. The first step is the same either way.
+    bool freeze_metric = false;
     /// H2 only: weight μ of the Δ² term in units of h⁴.
     double mu = 1.0;
     /// Volume-controlled fairing only: the volume penalty λ ∈ (0, 1]; the volume loss is about
