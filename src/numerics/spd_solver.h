@@ -22,7 +22,7 @@ public:
     ///         non-finite entry.
     void compute(const Eigen::SparseMatrix<double>& A, const char* caller);
 
-    /// A⁻¹·B for the last factored A, column by column.
+    /// A⁻¹·B for the last factored A (every column in one solve).
     [[nodiscard]] Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 
     /// How many symbolic analyses were run (for tests of the reuse).
