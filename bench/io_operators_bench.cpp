@@ -69,6 +69,12 @@ void BM_Validate(benchmark::State& state) {
     }
 }
 
+void BM_MeanEdgeLength(benchmark::State& state) {
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(genflow::mean_edge_length(mesh_50k()));
+    }
+}
+
 void BM_CotanStiffness(benchmark::State& state) {
     for (auto _ : state) {
         benchmark::DoNotOptimize(genflow::cotan_stiffness(mesh_50k()));
@@ -127,6 +133,7 @@ BENCHMARK(BM_ReadObj)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ReadOff)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WritePlyBinary)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Validate)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MeanEdgeLength)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CotanStiffness)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MassMatrixFull)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LumpedMassVoronoi)->Unit(benchmark::kMillisecond);
