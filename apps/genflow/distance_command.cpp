@@ -31,6 +31,7 @@ struct DistanceOptions {
     double scale = 0;     // the colour scale's top; 0: the Hausdorff distance A → B
     std::string report;   // an HTML page showing both meshes coloured; empty: none
     bool json = false;
+    bool hausdorff_only = false;  // no mean, RMS or pseudo-Hausdorff value
 };
 
 // The colour scale of --colored: [0, top].
@@ -61,32 +62,40 @@ ColorScale color_scale(const DistanceOptions& options, const SurfaceDistances& d
     return {diagonal, "the bounding-box diagonal (A lies on B)"};
 }
 
-nlohmann::json one_sided_json(const OneSidedDistance& d) {
-    return {{"hausdorff", d.hausdorff},
-            {"hausdorff_upper_bound", d.hausdorff_upper_bound},
-            {"farthest_point", {d.farthest_point[0], d.farthest_point[1], d.farthest_point[2]}},
-            {"mean", d.mean},
-            {"mean_error_bound", d.mean_error_bound},
-            {"rms", d.rms},
-            {"rms_error_bound", d.rms_error_bound}};
+nlohmann::json one_sided_json(const OneSidedDistance& d, bool with_mean) {
+    nlohmann::json one_sided = {
+        {"hausdorff", d.hausdorff},
+        {"hausdorff_upper_bound", d.hausdorff_upper_bound},
+        {"farthest_point", {d.farthest_point[0], d.farthest_point[1], d.farthest_point[2]}}};
+    if (with_mean) {
+        one_sided["mean"] = d.mean;
+        one_sided["mean_error_bound"] = d.mean_error_bound;
+        one_sided["rms"] = d.rms;
+        one_sided["rms_error_bound"] = d.rms_error_bound;
+    }
+    return one_sided;
 }
 
 // What the distances are, as --json prints them.
 nlohmann::json distance_summary(const DistanceOptions& options, const SurfaceDistances& d,
                                 double diagonal, double epsilon, double d_H,
                                 const ColorScale& scale) {
+    const bool with_mean = !options.hausdorff_only;
     nlohmann::json summary = {
         {"a", options.a},
         {"b", options.b},
         {"hausdorff", d.hausdorff},
         {"hausdorff_upper_bound", d.hausdorff_upper_bound},
-        {"mean", d.mean},
-        {"rms", d.rms},
-        {"a_to_b", one_sided_json(d.a_to_b)},
-        {"b_to_a", one_sided_json(d.b_to_a)},
+        {"a_to_b", one_sided_json(d.a_to_b, with_mean)},
+        {"b_to_a", one_sided_json(d.b_to_a, with_mean)},
         {"bbox_diagonal", diagonal},
-        {"pseudo_hausdorff", {{"value", d_H}, {"alpha", options.alpha}, {"epsilon", epsilon}}},
     };
+    if (with_mean) {
+        summary["mean"] = d.mean;
+        summary["rms"] = d.rms;
+        summary["pseudo_hausdorff"] = {
+            {"value", d_H}, {"alpha", options.alpha}, {"epsilon", epsilon}};
+    }
     if (!options.colored.empty()) {
         summary["colored"] = {{"file", options.colored},
                               {"property", "distance"},
@@ -99,8 +108,18 @@ nlohmann::json distance_summary(const DistanceOptions& options, const SurfaceDis
     return summary;
 }
 
-void print_distance_text(const DistanceOptions& options, const SurfaceDistances& d,
-                         const nlohmann::json& summary, const ColorScale& scale) {
+void print_hausdorff_text(const DistanceOptions& options, const SurfaceDistances& d,
+                          double diagonal) {
+    std::printf("%s -> %s: Hausdorff %.6g (<= %.6g)\n", options.a.c_str(), options.b.c_str(),
+                d.a_to_b.hausdorff, d.a_to_b.hausdorff_upper_bound);
+    std::printf("%s -> %s: Hausdorff %.6g (<= %.6g)\n", options.b.c_str(), options.a.c_str(),
+                d.b_to_a.hausdorff, d.b_to_a.hausdorff_upper_bound);
+    std::printf("symmetric: Hausdorff %.6g (%.4g%% of the bbox diagonal)\n", d.hausdorff,
+                100 * d.hausdorff / diagonal);
+}
+
+void print_full_text(const DistanceOptions& options, const SurfaceDistances& d,
+                     const nlohmann::json& summary) {
     std::printf("%s -> %s: Hausdorff %.6g (<= %.6g), mean %.6g, rms %.6g\n", options.a.c_str(),
                 options.b.c_str(), d.a_to_b.hausdorff, d.a_to_b.hausdorff_upper_bound,
                 d.a_to_b.mean, d.a_to_b.rms);
@@ -113,6 +132,9 @@ void print_distance_text(const DistanceOptions& options, const SurfaceDistances&
     const nlohmann::json& pseudo = summary["pseudo_hausdorff"];
     std::printf("pseudo-Hausdorff d_H (alpha %g, epsilon %.6g): %.6g\n", options.alpha,
                 pseudo["epsilon"].get<double>(), pseudo["value"].get<double>());
+}
+
+void print_outputs(const DistanceOptions& options, const ColorScale& scale) {
     if (!options.colored.empty()) {
         std::printf(
             "%s: A with its distance to B per vertex (property \"distance\"), coloured on "
@@ -123,6 +145,16 @@ void print_distance_text(const DistanceOptions& options, const SurfaceDistances&
         std::printf("%s: both meshes coloured by their distance, to look at in a browser\n",
                     printable(options.report).c_str());
     }
+}
+
+void print_distance_text(const DistanceOptions& options, const SurfaceDistances& d,
+                         const nlohmann::json& summary, const ColorScale& scale) {
+    if (options.hausdorff_only) {
+        print_hausdorff_text(options, d, summary["bbox_diagonal"].get<double>());
+    } else {
+        print_full_text(options, d, summary);
+    }
+    print_outputs(options, scale);
 }
 
 void run_distance(const DistanceOptions& options) {
@@ -138,10 +170,14 @@ void run_distance(const DistanceOptions& options) {
         print_warnings(a);
         print_warnings(b);
     }
-    const SurfaceDistances d = surface_distances(a.mesh, b.mesh);
+    const SurfaceDistances d =
+        surface_distances(a.mesh, b.mesh, {.mean_and_rms = !options.hausdorff_only});
     const double epsilon = options.epsilon > 0 ? options.epsilon : mean_edge_length(b.mesh);
-    const PseudoHausdorffEnergy pseudo(b.mesh, {.alpha = options.alpha, .epsilon = epsilon});
-    const double d_H = pseudo.value(a.mesh);
+    const double d_H =
+        options.hausdorff_only
+            ? 0.0
+            : PseudoHausdorffEnergy(b.mesh, {.alpha = options.alpha, .epsilon = epsilon})
+                  .value(a.mesh);
     const double diagonal = std::max(bounding_box_diagonal(a.mesh), bounding_box_diagonal(b.mesh));
     const ColorScale scale = color_scale(options, d, diagonal);
     const nlohmann::json summary = distance_summary(options, d, diagonal, epsilon, d_H, scale);
@@ -192,6 +228,9 @@ void register_distance_command(CLI::App& app) {
                         "Write an HTML page showing A and B in a 3D view, each coloured by its "
                         "distance to the other, and the numbers (.html)");
     command->add_flag("--json", options->json, "Print one JSON object instead of text");
+    command->add_flag("--hausdorff-only", options->hausdorff_only,
+                      "The exact Hausdorff distances alone, without the mean and RMS quadrature "
+                      "or the pseudo-Hausdorff value");
     command->callback([options] { run_distance(*options); });
 }
 

@@ -150,7 +150,8 @@ def hausdorff_rows(table, genflow, anchor, decimate, meshes, work, runs):
         coarse = os.path.join(work, os.path.basename(mesh) + ".decimated.ply")
         subprocess.run([decimate, mesh, coarse, "--ratio", "0.1"], check=True,
                        stdout=subprocess.DEVNULL)
-        ours = [genflow, "distance", mesh, coarse, "--json"]
+        # The anchor computes the Hausdorff distance alone, so genflow does too.
+        ours = [genflow, "distance", mesh, coarse, "--json", "--hausdorff-only"]
         if os.path.exists(anchor):
             (a, _), (b, _) = interleaved([ours, [anchor, mesh, coarse, "1e-4"]], runs)
         else:

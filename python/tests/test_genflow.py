@@ -196,6 +196,10 @@ class Distances(unittest.TestCase):
         self.assertAlmostEqual(d["b_to_a"]["hausdorff"], 0.5, delta=0.02)
         self.assertGreaterEqual(d["hausdorff_upper_bound"], d["hausdorff"])
         self.assertAlmostEqual(d["mean"], 0.5, delta=0.03)
+        alone = genflow.surface_distances(V, F, 1.5 * V, F, mean_and_rms=False)
+        self.assertEqual(alone["hausdorff"], d["hausdorff"])
+        self.assertNotIn("mean", alone)
+        self.assertNotIn("rms", alone["a_to_b"])
 
     def test_the_pseudo_hausdorff_gradient_matches_finite_differences(self):
         V, F = sphere(1)

@@ -3,9 +3,11 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 #include "genflow/exceptions.h"
@@ -112,8 +114,13 @@ constexpr int kLeafSize = 4;
 
 }  // namespace
 
+// The depth-first stack holds at most one pending sibling per level plus the node in hand; a
+// median split halves the faces per level, so 64 levels cover any addressable mesh.
+constexpr int kMaxStack = 64;
+
 struct TriangleBvh::Impl {
     TriangleMesh mesh;
+    std::vector<Eigen::Vector3d> corners;  // 3 per face, in leaf order: a leaf reads one run
     std::vector<Box> face_boxes;
     std::vector<Eigen::Vector3d> centroids;
     std::vector<int> order;
@@ -184,38 +191,45 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : impl_(std::make_unique<Impl
     std::iota(d.order.begin(), d.order.end(), 0);
     d.nodes.reserve(2 * m / kLeafSize + 2);
     d.build(0, static_cast<int>(m));
+    d.corners.resize(3 * m);
+    for (std::size_t k = 0; k < m; ++k) {
+        for (int j = 0; j < 3; ++j) {
+            d.corners[3 * k + static_cast<std::size_t>(j)] =
+                mesh.V.row(mesh.F(d.order[k], j)).transpose();
+        }
+    }
 }
 
 TriangleBvh::~TriangleBvh() = default;
 TriangleBvh::TriangleBvh(TriangleBvh&&) noexcept = default;
 TriangleBvh& TriangleBvh::operator=(TriangleBvh&&) noexcept = default;
 
+// Depth-first, nearer child first, every box no nearer than the best face so far pruned.
 SurfacePoint TriangleBvh::closest_point(const Eigen::Vector3d& query) const {
     const auto& d = *impl_;
     SurfacePoint best;
     double best2 = std::numeric_limits<double>::infinity();
-    // Depth-first, nearer child first, pruned by box distance.
-    std::vector<int> stack;
-    stack.reserve(64);
-    stack.push_back(0);
-    while (!stack.empty()) {
-        const Node& node = d.nodes[static_cast<std::size_t>(stack.back())];
-        stack.pop_back();
-        if (node.box.squared_distance(query) >= best2) {
+    // Each pending node with its box's squared distance, computed once when it is pushed.
+    std::array<std::pair<int, double>, kMaxStack> stack{};
+    int top = 0;
+    stack[top++] = {0, d.nodes[0].box.squared_distance(query)};
+    while (top > 0) {
+        const auto [index, box2] = stack[--top];
+        if (box2 >= best2) {
             continue;
         }
+        const Node& node = d.nodes[static_cast<std::size_t>(index)];
         if (node.count > 0) {
             for (int k = node.first; k < node.first + node.count; ++k) {
-                const int f = d.order[static_cast<std::size_t>(k)];
-                const Eigen::Vector3d a = d.mesh.V.row(d.mesh.F(f, 0)).transpose();
-                const Eigen::Vector3d b = d.mesh.V.row(d.mesh.F(f, 1)).transpose();
-                const Eigen::Vector3d c = d.mesh.V.row(d.mesh.F(f, 2)).transpose();
-                const Eigen::Vector3d w = closest_point_on_triangle(query, a, b, c);
-                const Eigen::Vector3d point = w[0] * a + w[1] * b + w[2] * c;
+                const Eigen::Vector3d* corner = &d.corners[3 * static_cast<std::size_t>(k)];
+                const Eigen::Vector3d w =
+                    closest_point_on_triangle(query, corner[0], corner[1], corner[2]);
+                const Eigen::Vector3d point =
+                    w[0] * corner[0] + w[1] * corner[1] + w[2] * corner[2];
                 const double distance2 = (point - query).squaredNorm();
                 if (distance2 < best2) {
                     best2 = distance2;
-                    best.face = f;
+                    best.face = d.order[static_cast<std::size_t>(k)];
                     best.barycentric = w;
                     best.point = point;
                 }
@@ -226,13 +240,17 @@ SurfacePoint TriangleBvh::closest_point(const Eigen::Vector3d& query) const {
             d.nodes[static_cast<std::size_t>(node.first)].box.squared_distance(query);
         const double right =
             d.nodes[static_cast<std::size_t>(node.right)].box.squared_distance(query);
-        // Push the farther child first so the nearer one is explored first.
-        if (left < right) {
-            stack.push_back(node.right);
-            stack.push_back(node.first);
-        } else {
-            stack.push_back(node.first);
-            stack.push_back(node.right);
+        // Push the farther child first so the nearer one is explored first; a child no nearer
+        // than the best face is not pushed at all.
+        const std::pair<int, double> near_child =
+            left < right ? std::pair{node.first, left} : std::pair{node.right, right};
+        const std::pair<int, double> far_child =
+            left < right ? std::pair{node.right, right} : std::pair{node.first, left};
+        if (far_child.second < best2) {
+            stack[top++] = far_child;
+        }
+        if (near_child.second < best2) {
+            stack[top++] = near_child;
         }
     }
     best.distance = std::sqrt(best2);

@@ -168,6 +168,20 @@ TEST(Cli, DistanceBetweenParallelSquares) {
     const auto bad = run_genflow("distance " + quoted(directory / "a.ply") + " " +
                                  quoted(directory / "none.ply"));
     EXPECT_EQ(bad.exit_code, 2);
+    // --hausdorff-only: the same Hausdorff distances, nothing else.
+    const auto alone = run_genflow("distance " + quoted(directory / "a.ply") + " " +
+                                   quoted(directory / "b.obj") + " --json --hausdorff-only");
+    ASSERT_EQ(alone.exit_code, 0) << alone.err;
+    const auto alone_json = nlohmann::json::parse(alone.out);
+    EXPECT_EQ(alone_json["hausdorff"], json["hausdorff"]);
+    EXPECT_EQ(alone_json["b_to_a"]["farthest_point"], json["b_to_a"]["farthest_point"]);
+    EXPECT_FALSE(alone_json.contains("mean"));
+    EXPECT_FALSE(alone_json["a_to_b"].contains("rms"));
+    EXPECT_FALSE(alone_json.contains("pseudo_hausdorff"));
+    const auto alone_text = run_genflow("distance " + quoted(directory / "a.ply") + " " +
+                                        quoted(directory / "b.obj") + " --hausdorff-only");
+    EXPECT_NE(alone_text.out.find("symmetric: Hausdorff"), std::string::npos) << alone_text.out;
+    EXPECT_EQ(alone_text.out.find("mean"), std::string::npos) << alone_text.out;
 }
 
 // A unit sphere against one moved by 0.3 along x: a vertex p of A is ||p − c| − 1| from B (up

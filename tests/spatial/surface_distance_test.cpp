@@ -5,10 +5,14 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "genflow/exceptions.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/spatial/closest_point.h"
+#include "genflow/threads.h"
+#include "support/reference_distances.h"
 #include "support/test_meshes.h"
 
 namespace genflow {
@@ -61,6 +65,57 @@ TEST(SurfaceDistance, IdenticalMeshesAreAtZero) {
     const SurfaceDistances d = surface_distances(mesh, mesh);
     EXPECT_LT(d.hausdorff, 1e-12);
     EXPECT_LT(d.mean, 1e-12);
+}
+
+// A bumpy sphere against a coarse smooth one: the maxima lie inside faces, so the split-and-prune
+// search must find them. Dense sampling (tests/support/reference_distances.h) brackets them:
+// sample max ≤ true ≤ sample max + grid spacing.
+TEST(SurfaceDistance, HausdorffIsBracketedByDenseSampling) {
+    const TriangleMesh bumpy = test::noisy_icosphere(3, 0.3);
+    const TriangleMesh smooth = make_icosphere(1, 1.0);
+    const double tolerance = 1e-6;
+    const SurfaceDistances d = surface_distances(bumpy, smooth, {.hausdorff_tolerance = tolerance});
+    for (const auto& [one_sided, from, to] :
+         {std::tuple{d.a_to_b, &bumpy, &smooth}, std::tuple{d.b_to_a, &smooth, &bumpy}}) {
+        const test::SampledDistance sampled = test::sampled_distance(*from, *to, 24);
+        EXPECT_GE(one_sided.hausdorff, sampled.max - 1e-12);
+        EXPECT_LE(one_sided.hausdorff, sampled.max + sampled.radius);
+        EXPECT_LE(one_sided.hausdorff_upper_bound, one_sided.hausdorff + tolerance + 1e-15);
+        const SurfacePoint at = TriangleBvh(*to).closest_point(one_sided.farthest_point);
+        EXPECT_NEAR(at.distance, one_sided.hausdorff, 1e-15);
+    }
+}
+
+TEST(SurfaceDistance, HausdorffAloneIsTheSameHausdorff) {
+    const TriangleMesh bumpy = test::noisy_icosphere(3, 0.3);
+    const TriangleMesh smooth = make_icosphere(2, 1.0);
+    const SurfaceDistances full = surface_distances(bumpy, smooth);
+    const SurfaceDistances alone = surface_distances(bumpy, smooth, {.mean_and_rms = false});
+    EXPECT_EQ(alone.hausdorff, full.hausdorff);
+    EXPECT_EQ(alone.a_to_b.hausdorff_upper_bound, full.a_to_b.hausdorff_upper_bound);
+    EXPECT_EQ(alone.b_to_a.farthest_point, full.b_to_a.farthest_point);
+    EXPECT_GT(full.mean, 0);
+    EXPECT_EQ(alone.mean, 0);
+    EXPECT_EQ(alone.a_to_b.rms, 0);
+}
+
+TEST(SurfaceDistance, ThreadCountChangesNothing) {
+    const TriangleMesh bumpy = test::noisy_icosphere(3, 0.3);
+    const TriangleMesh smooth = make_icosphere(2, 1.0);
+    const int before = thread_count();
+    set_thread_count(1);
+    const SurfaceDistances one = surface_distances(bumpy, smooth);
+    set_thread_count(2);
+    const SurfaceDistances two = surface_distances(bumpy, smooth);
+    set_thread_count(before);
+    for (const auto& [x, y] :
+         {std::pair{one.a_to_b, two.a_to_b}, std::pair{one.b_to_a, two.b_to_a}}) {
+        EXPECT_EQ(x.hausdorff, y.hausdorff);
+        EXPECT_EQ(x.hausdorff_upper_bound, y.hausdorff_upper_bound);
+        EXPECT_EQ(x.farthest_point, y.farthest_point);
+        EXPECT_EQ(x.mean, y.mean);
+        EXPECT_EQ(x.rms, y.rms);
+    }
 }
 
 TEST(SurfaceDistance, RejectsBadInput) {

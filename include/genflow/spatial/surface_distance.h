@@ -15,6 +15,9 @@ struct SurfaceDistanceOptions {
     /// Faces are split for the mean and RMS quadrature until their pieces are at most this long;
     /// 0 means half the smaller mean edge length of the two meshes.
     double quadrature_length = 0;
+    /// false: the Hausdorff distances alone (what CGAL's bounded_error_Hausdorff_distance
+    /// gives), skipping the quadrature of the mean and RMS, which then stay 0.
+    bool mean_and_rms = true;
 };
 
 /// Distances from the surface of one mesh to the surface of another (not just vertices).
