@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <tuple>
 #include <utility>
@@ -61,14 +62,20 @@ void report(std::vector<ValidationIssue>& issues, Severity severity, const Tally
     }
 }
 
+// The smallest angle lies opposite the shortest edge (law of sines): one atan2, not three.
 double smallest_angle_degrees(const detail::Triangle& t) {
-    double smallest = 180;
-    for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector3d u = t.x[(k + 1) % 3] - t.x[k];
-        const Eigen::Vector3d v = t.x[(k + 2) % 3] - t.x[k];
-        smallest = std::min(smallest, std::atan2(u.cross(v).norm(), u.dot(v)));
+    int k = 0;  // the corner opposite the shortest edge, (k + 1, k + 2)
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 3; ++c) {
+        const double length2 = (t.x[(c + 2) % 3] - t.x[(c + 1) % 3]).squaredNorm();
+        if (length2 < shortest) {
+            shortest = length2;
+            k = c;
+        }
     }
-    return smallest * 180 / std::numbers::pi;
+    const Eigen::Vector3d u = t.x[(k + 1) % 3] - t.x[k];
+    const Eigen::Vector3d v = t.x[(k + 2) % 3] - t.x[k];
+    return std::atan2(u.cross(v).norm(), u.dot(v)) * 180 / std::numbers::pi;
 }
 
 }  // namespace

@@ -24,6 +24,8 @@ VertexField unflatten(const Eigen::VectorXd& vector) {
     return Eigen::Map<const VertexField>(vector.data(), vector.size() / 3, 3);
 }
 
+using RowField = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
 }  // namespace
 
 struct VolumeControlledMetric::Impl {
@@ -42,13 +44,14 @@ struct VolumeControlledMetric::Impl {
         return detail::zero_fixed_rows(std::move(field), fixed);
     }
 
-    // P v = N Ψᵀ diag(1/a) Ψ D Nᵀ v.
+    // P v = N Ψᵀ diag(1/a) Ψ D Nᵀ v. The adjacency is symmetric: its transpose's products run
+    // as row-major inner products, which Eigen spreads over the threads.
     VertexField project(const VertexField& v) const {
         const Eigen::VectorXd f = (normals.array() * v.array()).rowwise().sum();
         const Eigen::VectorXd psi_mf =
-            adjacency * (masses.cwiseProduct(f).cwiseQuotient(ring_sizes));
+            adjacency.transpose() * (masses.cwiseProduct(f).cwiseQuotient(ring_sizes));
         const Eigen::VectorXd k =
-            (adjacency * psi_mf.cwiseQuotient(ring_areas)).cwiseQuotient(ring_sizes);
+            (adjacency.transpose() * psi_mf.cwiseQuotient(ring_areas)).cwiseQuotient(ring_sizes);
         return normals.array().colwise() * k.array();
     }
 
@@ -164,27 +167,29 @@ VertexField VolumeControlledMetric::shifted_gradient(const Eigen::SparseMatrix<d
     fairing.makeCompressed();
     d.preconditioner.compute(fairing, "VolumeControlledMetric::shifted_gradient");
 
+    // GMRES works on the fields interleaved (x, y, z of a vertex side by side), so that A, whose
+    // transpose it is (A is symmetric), multiplies all three coordinates in one pass.
     const auto system = [&](const Eigen::VectorXd& z) -> Eigen::VectorXd {
-        const VertexField Z = unflatten(z);
+        const VertexField Z = detail::deinterleave(z);
         VertexField result = Z.array().colwise() * d.masses.array();
-        result += dt * (A * d.apply_b(Z, options_.lambda));
+        const RowField BZ = d.apply_b(Z, options_.lambda);
+        result += dt * (A.transpose() * BZ);
         detail::copy_fixed_rows(result, Z, d.fixed);
-        return flatten(result);
+        return detail::interleave(result);
     };
     const auto precondition = [&](const Eigen::VectorXd& r) -> Eigen::VectorXd {
-        return flatten(d.preconditioner.solve(unflatten(r)));
+        return detail::interleave(d.preconditioner.solve(detail::deinterleave(r)));
     };
-    const VertexField rhs = d.zero_fixed(R);
-    const Eigen::VectorXd start = precondition(flatten(rhs));
+    const Eigen::VectorXd rhs = detail::interleave(d.zero_fixed(R));
     const auto solved =
-        detail::gmres(system, precondition, flatten(rhs), start, options_.tolerance, 50, 1000);
+        detail::gmres(system, precondition, rhs, precondition(rhs), options_.tolerance, 50, 1000);
     d.last_iterations = solved.iterations;
     if (!solved.converged) {
         throw SolverError("VolumeControlledMetric::shifted_gradient: GMRES did not converge in " +
                           std::to_string(solved.iterations) + " iterations (residual " +
                           std::to_string(solved.relative_residual) + ")");
     }
-    return d.apply_b(unflatten(solved.x), options_.lambda);
+    return d.apply_b(detail::deinterleave(solved.x), options_.lambda);
 }
 
 VertexField VolumeControlledMetric::volume_changing_part(const VertexField& v) const {

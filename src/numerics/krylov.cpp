@@ -60,25 +60,29 @@ KrylovResult gmres(const LinearOperator& A, const LinearOperator& P, const Eigen
             return result;
         }
         // Arnoldi on A·P with modified Gram–Schmidt; Givens rotations keep the least-squares
-        // problem triangular so the residual norm is known at every inner step.
-        Eigen::MatrixXd V(n, m + 1);
+        // problem triangular so the residual norm is known at every inner step. The basis V
+        // and its preconditioned images Z = P V (kept, so that the update Z y needs no further
+        // P) grow a vector at a time: a solve that converges in a few iterations touches only
+        // those, not m + 1 columns of the system's size.
+        std::vector<Eigen::VectorXd> V{r / beta};
+        std::vector<Eigen::VectorXd> Z;
+        V.reserve(static_cast<std::size_t>(m) + 1);
+        Z.reserve(static_cast<std::size_t>(m));
         Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m + 1, m);
         Eigen::VectorXd cs = Eigen::VectorXd::Zero(m);
         Eigen::VectorXd sn = Eigen::VectorXd::Zero(m);
         Eigen::VectorXd g = Eigen::VectorXd::Zero(m + 1);
-        V.col(0) = r / beta;
         g[0] = beta;
         int k = 0;
         for (; k < m && result.iterations < max_iterations; ++k) {
-            Eigen::VectorXd w = A(P(V.col(k)));
+            Z.push_back(P(V[static_cast<std::size_t>(k)]));
+            Eigen::VectorXd w = A(Z.back());
             for (int j = 0; j <= k; ++j) {
-                H(j, k) = w.dot(V.col(j));
-                w -= H(j, k) * V.col(j);
+                H(j, k) = w.dot(V[static_cast<std::size_t>(j)]);
+                w -= H(j, k) * V[static_cast<std::size_t>(j)];
             }
             H(k + 1, k) = w.norm();
-            if (H(k + 1, k) > 0) {
-                V.col(k + 1) = w / H(k + 1, k);
-            }
+            V.push_back(H(k + 1, k) > 0 ? (w / H(k + 1, k)).eval() : Eigen::VectorXd::Zero(n));
             for (int j = 0; j < k; ++j) {
                 const double t = cs[j] * H(j, k) + sn[j] * H(j + 1, k);
                 H(j + 1, k) = -sn[j] * H(j, k) + cs[j] * H(j + 1, k);
@@ -99,7 +103,9 @@ KrylovResult gmres(const LinearOperator& A, const LinearOperator& P, const Eigen
         }
         const Eigen::VectorXd y =
             H.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(g.head(k));
-        result.x += P(V.leftCols(k) * y);
+        for (int j = 0; j < k; ++j) {
+            result.x += y[j] * Z[static_cast<std::size_t>(j)];
+        }
     }
     result.relative_residual = (b - A(result.x)).norm() / b_norm;
     result.converged = result.relative_residual <= tolerance;
