@@ -78,6 +78,218 @@ double smallest_angle_degrees(const detail::Triangle& t) {
     return std::atan2(u.cross(v).norm(), u.dot(v)) * 180 / std::numbers::pi;
 }
 
+// The vertices' coordinates: non-finite ones, and ones too large for products of lengths.
+struct VertexFindings {
+    Tally non_finite{"vertex"};
+    Tally huge{"vertex"};
+};
+
+VertexFindings check_vertices(const TriangleMesh& mesh) {
+    VertexFindings found;
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+        if (!std::isfinite(mesh.V(i, 0)) || !std::isfinite(mesh.V(i, 1)) ||
+            !std::isfinite(mesh.V(i, 2))) {
+            found.non_finite.add(i);
+        } else if (mesh.V.row(i).cwiseAbs().maxCoeff() > kLargestCoordinate) {
+            found.huge.add(i);
+        }
+    }
+    return found;
+}
+
+// The faces' indices: out of range, repeated, the vertices no face uses, and the faces fit for
+// the rest of the checks ("good").
+struct IndexFindings {
+    Tally out_of_range{"face"};
+    Tally repeated{"face"};
+    Tally unreferenced{"vertex"};
+    std::vector<Eigen::Index> good_faces;
+};
+
+IndexFindings check_indices(const TriangleMesh& mesh) {
+    const Eigen::Index n = mesh.V.rows();
+    IndexFindings found;
+    found.good_faces.reserve(static_cast<std::size_t>(mesh.F.rows()));
+    std::vector<bool> referenced(static_cast<std::size_t>(n), false);
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        const int a = mesh.F(f, 0);
+        const int b = mesh.F(f, 1);
+        const int c = mesh.F(f, 2);
+        if (std::min({a, b, c}) < 0 || std::max({a, b, c}) >= n) {
+            found.out_of_range.add(f);
+            continue;
+        }
+        for (int k = 0; k < 3; ++k) {
+            referenced[static_cast<std::size_t>(mesh.F(f, k))] = true;
+        }
+        if (a == b || b == c || c == a) {
+            found.repeated.add(f);
+            continue;
+        }
+        found.good_faces.push_back(f);
+    }
+    for (Eigen::Index i = 0; i < n; ++i) {
+        if (!referenced[static_cast<std::size_t>(i)]) {
+            found.unreferenced.add(i);
+        }
+    }
+    return found;
+}
+
+// The good faces' shapes: zero area, and slivers.
+struct ShapeFindings {
+    Tally zero_area{"face"};
+    Tally sliver{"face"};
+};
+
+ShapeFindings check_shapes(const TriangleMesh& mesh, const std::vector<Eigen::Index>& good_faces,
+                           double sliver_angle_degrees) {
+    ShapeFindings found;
+    for (const Eigen::Index f : good_faces) {
+        const detail::Triangle t(mesh, f);
+        if (t.degenerate()) {
+            found.zero_area.add(f);
+        } else if (smallest_angle_degrees(t) < sliver_angle_degrees) {
+            found.sliver.add(f);
+        }
+    }
+    return found;
+}
+
+// Extra copies of a face: the same vertex set more than once.
+Tally duplicate_faces(const TriangleMesh& mesh, const std::vector<Eigen::Index>& good_faces) {
+    std::vector<std::tuple<int, int, int, Eigen::Index>> sorted_faces;
+    sorted_faces.reserve(good_faces.size());
+    for (const Eigen::Index f : good_faces) {
+        std::array<int, 3> v = {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+        std::sort(v.begin(), v.end());
+        sorted_faces.emplace_back(v[0], v[1], v[2], f);
+    }
+    detail::sort_by_vertex(
+        sorted_faces, static_cast<std::size_t>(mesh.V.rows()),
+        [](const auto& face) { return std::get<0>(face); }, std::less<>());
+    Tally duplicate{"face"};
+    for (std::size_t k = 1; k < sorted_faces.size(); ++k) {
+        const auto& [a0, b0, c0, f0] = sorted_faces[k - 1];
+        const auto& [a1, b1, c1, f1] = sorted_faces[k];
+        if (a0 == a1 && b0 == b1 && c0 == c1) {
+            duplicate.add(f1);
+        }
+    }
+    return duplicate;
+}
+
+// The good faces' half-edges grouped by undirected edge (sorted by lo, hi, face).
+std::vector<EdgeTraversal> grouped_half_edges(const TriangleMesh& mesh,
+                                              const std::vector<Eigen::Index>& good_faces) {
+    std::vector<EdgeTraversal> half_edges;
+    half_edges.reserve(3 * good_faces.size());
+    for (const Eigen::Index f : good_faces) {
+        for (int k = 0; k < 3; ++k) {
+            const int from = mesh.F(f, k);
+            const int to = mesh.F(f, (k + 1) % 3);
+            const int k_to = (k + 1) % 3;
+            if (from < to) {
+                half_edges.push_back({from, to, true, f, k, k_to});
+            } else {
+                half_edges.push_back({to, from, false, f, k_to, k});
+            }
+        }
+    }
+    detail::sort_by_vertex(
+        half_edges, static_cast<std::size_t>(mesh.V.rows()),
+        [](const EdgeTraversal& edge) { return edge.lo; },
+        [](const EdgeTraversal& x, const EdgeTraversal& y) {
+            return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
+        });
+    return half_edges;
+}
+
+// The surface's topology over the good faces: edges, boundary, orientation, fans, components.
+struct TopologyFindings {
+    Tally non_manifold_edge{"edge"};
+    Tally inconsistent{"edge"};
+    Tally boundary{"edge"};
+    Tally non_manifold_vertex{"vertex"};
+    Eigen::Index edges = 0;
+    Eigen::Index components = 0;
+    Eigen::Index boundary_loops = 0;
+    Eigen::Index vertices_in_faces = 0;
+};
+
+TopologyFindings check_topology(const TriangleMesh& mesh,
+                                const std::vector<Eigen::Index>& good_faces) {
+    const Eigen::Index n = mesh.V.rows();
+    const std::vector<EdgeTraversal> half_edges = grouped_half_edges(mesh, good_faces);
+    TopologyFindings found;
+    // Corners (3f + k) are united across manifold edges: a vertex whose corners end in more than
+    // one set has several fans, i.e. is non-manifold.
+    detail::UnionFind corners(static_cast<std::size_t>(3 * mesh.F.rows()));
+    detail::UnionFind vertex_sets(static_cast<std::size_t>(n));
+    detail::UnionFind boundary_sets(static_cast<std::size_t>(n));
+    std::vector<bool> on_boundary(static_cast<std::size_t>(n), false);
+    for (std::size_t begin = 0; begin < half_edges.size();) {
+        std::size_t end = begin;
+        while (end < half_edges.size() && half_edges[end].lo == half_edges[begin].lo &&
+               half_edges[end].hi == half_edges[begin].hi) {
+            ++end;
+        }
+        const EdgeTraversal& first = half_edges[begin];
+        ++found.edges;
+        vertex_sets.unite(static_cast<std::size_t>(first.lo), static_cast<std::size_t>(first.hi));
+        const std::size_t faces_on_edge = end - begin;
+        if (faces_on_edge == 1) {
+            found.boundary.add(first.lo, first.hi);
+            boundary_sets.unite(static_cast<std::size_t>(first.lo),
+                                static_cast<std::size_t>(first.hi));
+            on_boundary[static_cast<std::size_t>(first.lo)] = true;
+            on_boundary[static_cast<std::size_t>(first.hi)] = true;
+        } else if (faces_on_edge == 2) {
+            const EdgeTraversal& second = half_edges[begin + 1];
+            if (first.forward == second.forward) {
+                found.inconsistent.add(first.lo, first.hi);
+            }
+            corners.unite(static_cast<std::size_t>(3 * first.face + first.corner_lo),
+                          static_cast<std::size_t>(3 * second.face + second.corner_lo));
+            corners.unite(static_cast<std::size_t>(3 * first.face + first.corner_hi),
+                          static_cast<std::size_t>(3 * second.face + second.corner_hi));
+        } else {
+            found.non_manifold_edge.add(first.lo, first.hi);
+        }
+        begin = end;
+    }
+
+    // Fans per vertex: a vertex is non-manifold when its corners fall into more than one set.
+    constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+    std::vector<std::size_t> first_fan(static_cast<std::size_t>(n), kNone);
+    std::vector<bool> several_fans(static_cast<std::size_t>(n), false);
+    for (const Eigen::Index f : good_faces) {
+        for (int k = 0; k < 3; ++k) {
+            const auto v = static_cast<std::size_t>(mesh.F(f, k));
+            const std::size_t fan = corners.find(static_cast<std::size_t>(3 * f + k));
+            if (first_fan[v] == kNone) {
+                first_fan[v] = fan;
+            } else if (first_fan[v] != fan) {
+                several_fans[v] = true;
+            }
+        }
+    }
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const auto v = static_cast<std::size_t>(i);
+        if (several_fans[v]) {
+            found.non_manifold_vertex.add(i);
+        }
+        if (first_fan[v] != kNone) {
+            ++found.vertices_in_faces;
+            found.components += vertex_sets.find(v) == v ? 1 : 0;
+        }
+        if (on_boundary[v]) {
+            found.boundary_loops += boundary_sets.find(v) == v ? 1 : 0;
+        }
+    }
+    return found;
+}
+
 }  // namespace
 
 bool ValidationReport::ok() const {
@@ -101,190 +313,48 @@ ValidationReport validate(const TriangleMesh& mesh, const ValidationOptions& opt
     const Eigen::Index m = mesh.F.rows();
     r.num_vertices = n;
     r.num_faces = m;
-
-    Tally non_finite{"vertex"}, huge{"vertex"};
-    for (Eigen::Index i = 0; i < n; ++i) {
-        if (!std::isfinite(mesh.V(i, 0)) || !std::isfinite(mesh.V(i, 1)) ||
-            !std::isfinite(mesh.V(i, 2))) {
-            non_finite.add(i);
-        } else if (mesh.V.row(i).cwiseAbs().maxCoeff() > kLargestCoordinate) {
-            huge.add(i);
-        }
-    }
+    const VertexFindings vertices = check_vertices(mesh);
+    const IndexFindings indices = check_indices(mesh);
+    const std::vector<Eigen::Index>& good_faces = indices.good_faces;
+    // Shapes only where every coordinate is one that products of lengths take.
+    const bool measurable = vertices.non_finite.count == 0 && vertices.huge.count == 0;
+    const ShapeFindings shapes =
+        measurable ? check_shapes(mesh, good_faces, options.sliver_angle_degrees) : ShapeFindings{};
+    const Tally duplicate = duplicate_faces(mesh, good_faces);
+    const TopologyFindings topology = check_topology(mesh, good_faces);
+    const Tally& non_finite = vertices.non_finite;
+    const Tally& huge = vertices.huge;
+    const Tally& out_of_range = indices.out_of_range;
+    const Tally& repeated = indices.repeated;
+    const Tally& unreferenced = indices.unreferenced;
+    const Tally& zero_area = shapes.zero_area;
+    const Tally& sliver = shapes.sliver;
+    const Tally& non_manifold_edge = topology.non_manifold_edge;
+    const Tally& inconsistent = topology.inconsistent;
+    const Tally& boundary = topology.boundary;
+    const Tally& non_manifold_vertex = topology.non_manifold_vertex;
     r.non_finite_vertices = non_finite.count;
     r.huge_vertices = huge.count;
-
-    // Per-face checks; collect the faces fit for topology.
-    Tally out_of_range{"face"}, repeated{"face"}, zero_area{"face"}, sliver{"face"};
-    std::vector<Eigen::Index> good_faces;
-    good_faces.reserve(static_cast<std::size_t>(m));
-    std::vector<bool> referenced(static_cast<std::size_t>(n), false);
-    for (Eigen::Index f = 0; f < m; ++f) {
-        const int a = mesh.F(f, 0);
-        const int b = mesh.F(f, 1);
-        const int c = mesh.F(f, 2);
-        if (std::min({a, b, c}) < 0 || std::max({a, b, c}) >= n) {
-            out_of_range.add(f);
-            continue;
-        }
-        for (int k = 0; k < 3; ++k) {
-            referenced[static_cast<std::size_t>(mesh.F(f, k))] = true;
-        }
-        if (a == b || b == c || c == a) {
-            repeated.add(f);
-            continue;
-        }
-        good_faces.push_back(f);
-        // Their geometry only where every coordinate is one that products of lengths take.
-        if (non_finite.count == 0 && huge.count == 0) {
-            const detail::Triangle t(mesh, f);
-            if (t.degenerate()) {
-                zero_area.add(f);
-            } else if (smallest_angle_degrees(t) < options.sliver_angle_degrees) {
-                sliver.add(f);
-            }
-        }
-    }
     r.out_of_range_faces = out_of_range.count;
     r.repeated_index_faces = repeated.count;
     r.zero_area_faces = zero_area.count;
     r.sliver_faces = sliver.count;
-
-    Tally unreferenced{"vertex"};
-    for (Eigen::Index i = 0; i < n; ++i) {
-        if (!referenced[static_cast<std::size_t>(i)]) {
-            unreferenced.add(i);
-        }
-    }
     r.unreferenced_vertices = unreferenced.count;
-
-    // Duplicate faces: the same vertex set more than once.
-    std::vector<std::tuple<int, int, int, Eigen::Index>> sorted_faces;
-    sorted_faces.reserve(good_faces.size());
-    for (const Eigen::Index f : good_faces) {
-        std::array<int, 3> v = {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
-        std::sort(v.begin(), v.end());
-        sorted_faces.emplace_back(v[0], v[1], v[2], f);
-    }
-    detail::sort_by_vertex(
-        sorted_faces, static_cast<std::size_t>(n),
-        [](const auto& face) { return std::get<0>(face); }, std::less<>());
-    Tally duplicate{"face"};
-    for (std::size_t k = 1; k < sorted_faces.size(); ++k) {
-        const auto& [a0, b0, c0, f0] = sorted_faces[k - 1];
-        const auto& [a1, b1, c1, f1] = sorted_faces[k];
-        if (a0 == a1 && b0 == b1 && c0 == c1) {
-            duplicate.add(f1);
-        }
-    }
     r.duplicate_faces = duplicate.count;
-
-    // Edges: group the half-edges of the good faces by undirected edge.
-    std::vector<EdgeTraversal> half_edges;
-    half_edges.reserve(3 * good_faces.size());
-    for (const Eigen::Index f : good_faces) {
-        for (int k = 0; k < 3; ++k) {
-            const int from = mesh.F(f, k);
-            const int to = mesh.F(f, (k + 1) % 3);
-            const int k_to = (k + 1) % 3;
-            if (from < to) {
-                half_edges.push_back({from, to, true, f, k, k_to});
-            } else {
-                half_edges.push_back({to, from, false, f, k_to, k});
-            }
-        }
-    }
-    detail::sort_by_vertex(
-        half_edges, static_cast<std::size_t>(n), [](const EdgeTraversal& edge) { return edge.lo; },
-        [](const EdgeTraversal& x, const EdgeTraversal& y) {
-            return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
-        });
-
-    // Corners (3f + k) are united across manifold edges: a vertex whose corners end in more than
-    // one set has several fans, i.e. is non-manifold.
-    detail::UnionFind corners(static_cast<std::size_t>(3 * m));
-    detail::UnionFind vertex_sets(static_cast<std::size_t>(n));
-    detail::UnionFind boundary_sets(static_cast<std::size_t>(n));
-    std::vector<bool> on_boundary(static_cast<std::size_t>(n), false);
-    Tally non_manifold_edge{"edge"}, inconsistent{"edge"}, boundary{"edge"};
-    for (std::size_t begin = 0; begin < half_edges.size();) {
-        std::size_t end = begin;
-        while (end < half_edges.size() && half_edges[end].lo == half_edges[begin].lo &&
-               half_edges[end].hi == half_edges[begin].hi) {
-            ++end;
-        }
-        const EdgeTraversal& first = half_edges[begin];
-        ++r.num_edges;
-        vertex_sets.unite(static_cast<std::size_t>(first.lo), static_cast<std::size_t>(first.hi));
-        const std::size_t faces_on_edge = end - begin;
-        if (faces_on_edge == 1) {
-            boundary.add(first.lo, first.hi);
-            boundary_sets.unite(static_cast<std::size_t>(first.lo),
-                                static_cast<std::size_t>(first.hi));
-            on_boundary[static_cast<std::size_t>(first.lo)] = true;
-            on_boundary[static_cast<std::size_t>(first.hi)] = true;
-        } else if (faces_on_edge == 2) {
-            const EdgeTraversal& second = half_edges[begin + 1];
-            if (first.forward == second.forward) {
-                inconsistent.add(first.lo, first.hi);
-            }
-            corners.unite(static_cast<std::size_t>(3 * first.face + first.corner_lo),
-                          static_cast<std::size_t>(3 * second.face + second.corner_lo));
-            corners.unite(static_cast<std::size_t>(3 * first.face + first.corner_hi),
-                          static_cast<std::size_t>(3 * second.face + second.corner_hi));
-        } else {
-            non_manifold_edge.add(first.lo, first.hi);
-        }
-        begin = end;
-    }
+    r.num_edges = topology.edges;
     r.non_manifold_edges = non_manifold_edge.count;
     r.inconsistent_orientation_edges = inconsistent.count;
     r.boundary_edges = boundary.count;
-
-    // Fans per vertex: a vertex is non-manifold when its corners fall into more than one set.
-    constexpr std::size_t kNone = static_cast<std::size_t>(-1);
-    std::vector<std::size_t> first_fan(static_cast<std::size_t>(n), kNone);
-    std::vector<bool> several_fans(static_cast<std::size_t>(n), false);
-    for (const Eigen::Index f : good_faces) {
-        for (int k = 0; k < 3; ++k) {
-            const auto v = static_cast<std::size_t>(mesh.F(f, k));
-            const std::size_t fan = corners.find(static_cast<std::size_t>(3 * f + k));
-            if (first_fan[v] == kNone) {
-                first_fan[v] = fan;
-            } else if (first_fan[v] != fan) {
-                several_fans[v] = true;
-            }
-        }
-    }
-    Tally non_manifold_vertex{"vertex"};
-    std::vector<bool> has_face(static_cast<std::size_t>(n), false);
-    for (Eigen::Index i = 0; i < n; ++i) {
-        has_face[static_cast<std::size_t>(i)] = first_fan[static_cast<std::size_t>(i)] != kNone;
-        if (several_fans[static_cast<std::size_t>(i)]) {
-            non_manifold_vertex.add(i);
-        }
-    }
     r.non_manifold_vertices = non_manifold_vertex.count;
-
-    Eigen::Index vertices_in_faces = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-        const auto v = static_cast<std::size_t>(i);
-        if (has_face[v]) {
-            ++vertices_in_faces;
-            r.components += vertex_sets.find(v) == v ? 1 : 0;
-        }
-        if (on_boundary[v]) {
-            r.boundary_loops += boundary_sets.find(v) == v ? 1 : 0;
-        }
-    }
+    r.components = topology.components;
+    r.boundary_loops = topology.boundary_loops;
     r.euler_characteristic =
-        vertices_in_faces - r.num_edges + static_cast<Eigen::Index>(good_faces.size());
+        topology.vertices_in_faces - r.num_edges + static_cast<Eigen::Index>(good_faces.size());
     if (r.manifold() && r.inconsistent_orientation_edges == 0 && !good_faces.empty()) {
         r.genus = (2 * r.components - r.boundary_loops - r.euler_characteristic) / 2;
     }
-    if (r.closed() && r.manifold() && r.inconsistent_orientation_edges == 0 &&
-        non_finite.count == 0 && huge.count == 0 && out_of_range.count == 0 &&
-        !good_faces.empty()) {
+    if (r.closed() && r.manifold() && r.inconsistent_orientation_edges == 0 && measurable &&
+        out_of_range.count == 0 && !good_faces.empty()) {
         r.inward_oriented = enclosed_volume(mesh) < 0;
     }
 
