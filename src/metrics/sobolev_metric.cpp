@@ -19,7 +19,9 @@ struct H1Metric::PatternCache {
 };
 
 H1Metric::H1Metric(SobolevOptions options)
-    : options_(options), pattern_cache_(std::make_unique<PatternCache>()) {
+    : SparseMetric(options.factorization),
+      options_(options),
+      pattern_cache_(std::make_unique<PatternCache>()) {
     if (!detail::finite_above(options_.lambda, 0)) {
         throw InvalidInput("H1Metric: lambda must be positive and finite, got " +
                            std::to_string(options_.lambda));
@@ -46,7 +48,8 @@ Eigen::SparseMatrix<double> H1Metric::assemble(const TriangleMesh& mesh) const {
         mesh, detail::floored_lumped_masses(mesh, options_.mass), options_.lambda);
 }
 
-H2Metric::H2Metric(SobolevOptions options) : options_(options) {
+H2Metric::H2Metric(SobolevOptions options)
+    : SparseMetric(options.factorization), options_(options) {
     if (!detail::finite_above(options_.lambda, 0)) {
         throw InvalidInput("H2Metric: lambda must be positive and finite, got " +
                            std::to_string(options_.lambda));

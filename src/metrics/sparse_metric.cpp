@@ -10,6 +10,9 @@
 namespace genflow {
 
 struct SparseMetric::Impl {
+    explicit Impl(Factorization factorization)
+        : metric_solver(factorization), shifted_solver(factorization) {}
+
     Eigen::SparseMatrix<double> G;
     detail::SpdSolver metric_solver;   // factors G (pinned)
     detail::SpdSolver shifted_solver;  // factors G + dt·A (pinned)
@@ -17,7 +20,8 @@ struct SparseMetric::Impl {
     bool ready = false;
 };
 
-SparseMetric::SparseMetric() : impl_(std::make_unique<Impl>()) {}
+SparseMetric::SparseMetric(Factorization factorization)
+    : impl_(std::make_unique<Impl>(factorization)) {}
 SparseMetric::~SparseMetric() = default;
 SparseMetric::SparseMetric(SparseMetric&&) noexcept = default;
 SparseMetric& SparseMetric::operator=(SparseMetric&&) noexcept = default;

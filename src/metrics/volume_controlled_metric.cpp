@@ -29,6 +29,8 @@ using RowField = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 }  // namespace
 
 struct VolumeControlledMetric::Impl {
+    explicit Impl(Factorization factorization) : preconditioner(factorization) {}
+
     Eigen::VectorXd masses;                 // D, floored
     Eigen::MatrixX3d normals;               // N (unit, zero where undefined)
     Eigen::MatrixX3i faces;                 // the connectivity `adjacency` was built for
@@ -44,14 +46,13 @@ struct VolumeControlledMetric::Impl {
         return detail::zero_fixed_rows(std::move(field), fixed);
     }
 
-    // P v = N Ψᵀ diag(1/a) Ψ D Nᵀ v. The adjacency is symmetric: its transpose's products run
-    // as row-major inner products, which Eigen spreads over the threads.
+    // P v = N Ψᵀ diag(1/a) Ψ D Nᵀ v.
     VertexField project(const VertexField& v) const {
         const Eigen::VectorXd f = (normals.array() * v.array()).rowwise().sum();
         const Eigen::VectorXd psi_mf =
-            adjacency.transpose() * (masses.cwiseProduct(f).cwiseQuotient(ring_sizes));
+            adjacency * (masses.cwiseProduct(f).cwiseQuotient(ring_sizes));
         const Eigen::VectorXd k =
-            (adjacency.transpose() * psi_mf.cwiseQuotient(ring_areas)).cwiseQuotient(ring_sizes);
+            (adjacency * psi_mf.cwiseQuotient(ring_areas)).cwiseQuotient(ring_sizes);
         return normals.array().colwise() * k.array();
     }
 
@@ -63,7 +64,7 @@ struct VolumeControlledMetric::Impl {
 };
 
 VolumeControlledMetric::VolumeControlledMetric(VolumeControlledOptions options)
-    : options_(options), impl_(std::make_unique<Impl>()) {
+    : options_(options), impl_(std::make_unique<Impl>(options.factorization)) {
     if (!detail::finite_above(options_.lambda, 0) || options_.lambda > 1) {
         throw InvalidInput("VolumeControlledMetric: lambda must lie in (0, 1], got " +
                            std::to_string(options_.lambda));

@@ -6,6 +6,10 @@
 
 #include "genflow/exceptions.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #ifdef GENFLOW_HAS_CHOLMOD
 #include <Eigen/CholmodSupport>
 #else
@@ -18,6 +22,30 @@ namespace genflow::detail {
 // Below this many rows the factorization is simplicial, above it as CHOLMOD decides.
 constexpr Eigen::Index kSimplicialRows = 60000;
 #endif
+
+namespace {
+
+// The numeric factorization, with CHOLMOD's own OpenMP regions held to one thread. Debian's
+// CHOLMOD opens a region of a fixed four threads for each large supernode (copying and zeroing
+// its columns, memory-bound work), whatever the thread count asked for; on two cores those
+// teams cost more than they save: on the 173K armadillo a supernodal factorization takes 217
+// instead of 341 ms with them held to one thread, the BLAS keeping its own threads
+// (docs/benchmarks.md, "Against the anchors"). The same bits either way. A host `teams` region
+// of one thread sets that limit; it may not be nested in a parallel region, where CHOLMOD's
+// regions run on the calling thread anyway (one active level, OpenMP's default).
+template <class Solver>
+void factorize(Solver& solver, const Eigen::SparseMatrix<double>& A) {
+#ifdef _OPENMP
+    if (!omp_in_parallel()) {
+#pragma omp teams num_teams(1) thread_limit(1)
+        solver.factorize(A);
+        return;
+    }
+#endif
+    solver.factorize(A);
+}
+
+}  // namespace
 
 struct SpdSolver::Impl {
 #ifdef GENFLOW_HAS_CHOLMOD
@@ -38,7 +66,8 @@ struct SpdSolver::Impl {
     }
 };
 
-SpdSolver::SpdSolver() : impl_(std::make_unique<Impl>()) {
+SpdSolver::SpdSolver(Factorization factorization)
+    : impl_(std::make_unique<Impl>()), factorization_(factorization) {
 #ifdef GENFLOW_HAS_CHOLMOD
     // A failure is reported as a SolverError; CHOLMOD printing its own warning as well would
     // add a second line to the tool's one-line message.
@@ -76,8 +105,10 @@ void SpdSolver::compute(const Eigen::SparseMatrix<double>& A, const char* caller
         // hands many small blocks to the BLAS, whose threads then contend with the flows run
         // side by side. Simplicial is faster on whole matches up to 52K rows, supernodal from
         // 84K (docs/benchmarks.md, "Sparse factorization").
-        impl_->solver.setMode(compressed.rows() < kSimplicialRows ? Eigen::CholmodSimplicialLLt
-                                                                  : Eigen::CholmodAuto);
+        impl_->solver.setMode(factorization_ == Factorization::Supernodal
+                                  ? Eigen::CholmodSupernodalLLt
+                              : compressed.rows() < kSimplicialRows ? Eigen::CholmodSimplicialLLt
+                                                                    : Eigen::CholmodAuto);
 #endif
         impl_->solver.analyzePattern(compressed);
         impl_->rows = compressed.rows();
@@ -87,7 +118,7 @@ void SpdSolver::compute(const Eigen::SparseMatrix<double>& A, const char* caller
                             compressed.innerIndexPtr() + compressed.nonZeros());
         ++analyses_;
     }
-    impl_->solver.factorize(compressed);
+    factorize(impl_->solver, compressed);
     impl_->factored = impl_->solver.info() == Eigen::Success;
 #ifndef GENFLOW_HAS_CHOLMOD
     // LDLᵀ succeeds on indefinite matrices; a non-positive pivot means A is not SPD.

@@ -7,11 +7,13 @@
 #include <Eigen/SparseCore>
 #include <memory>
 
+#include "genflow/metrics/factorization.h"
+
 namespace genflow::detail {
 
 class SpdSolver {
 public:
-    SpdSolver();
+    explicit SpdSolver(Factorization factorization = Factorization::BySize);
     ~SpdSolver();
     SpdSolver(SpdSolver&&) noexcept;
     SpdSolver& operator=(SpdSolver&&) noexcept;
@@ -35,6 +37,7 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     int analyses_ = 0;
+    Factorization factorization_;
 };
 
 }  // namespace genflow::detail

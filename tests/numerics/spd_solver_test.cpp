@@ -36,8 +36,9 @@ Eigen::SparseMatrix<double> sphere_h1_matrix(int level, int copies) {
     return A;
 }
 
-void expect_solves(const Eigen::SparseMatrix<double>& A) {
-    detail::SpdSolver solver;
+void expect_solves(const Eigen::SparseMatrix<double>& A,
+                   Factorization factorization = Factorization::BySize) {
+    detail::SpdSolver solver(factorization);
     solver.compute(A, "test");
     const Eigen::MatrixXd X_true = test::random_matrix(A.rows(), 3, 1);
     const Eigen::MatrixXd B = A * X_true;
@@ -59,6 +60,42 @@ void expect_solves(const Eigen::SparseMatrix<double>& A) {
 TEST(SpdSolver, SolvesSmallAndLargeSystemsAndRefusesIndefiniteOnes) {
     expect_solves(sphere_h1_matrix(3, 1));  // 642 rows
     expect_solves(sphere_h1_matrix(6, 2));  // 81,924 rows
+    expect_solves(sphere_h1_matrix(3, 1), Factorization::Supernodal);
+    expect_solves(sphere_h1_matrix(5, 1), Factorization::Supernodal);  // 10,242 rows
+}
+
+// The two factorizations of the same matrix agree to rounding.
+TEST(SpdSolver, SupernodalAndSimplicialAgree) {
+    const Eigen::SparseMatrix<double> A = sphere_h1_matrix(5, 1);
+    const Eigen::MatrixXd B = test::random_matrix(A.rows(), 3, 3);
+    detail::SpdSolver simplicial(Factorization::BySize);
+    detail::SpdSolver supernodal(Factorization::Supernodal);
+    simplicial.compute(A, "test");
+    supernodal.compute(A, "test");
+    const Eigen::MatrixXd X = simplicial.solve(B);
+    EXPECT_LT((supernodal.solve(B) - X).norm(), 1e-10 * X.norm());
+}
+
+// Called at the top level, the factorization holds CHOLMOD's own thread teams to one thread;
+// inside a parallel region (a matcher's flows side by side) it runs as it is: the same bits.
+TEST(SpdSolver, FactorsToTheSameBitsInsideAndOutsideAParallelRegion) {
+    const Eigen::SparseMatrix<double> A = sphere_h1_matrix(6, 2);  // supernodal: 81,924 rows
+    const Eigen::MatrixXd B = test::random_matrix(A.rows(), 3, 2);
+    detail::SpdSolver top;
+    top.compute(A, "test");
+    const Eigen::MatrixXd at_top = top.solve(B);
+    Eigen::MatrixXd inside;
+#pragma omp parallel num_threads(2)
+    {
+#pragma omp single
+        {
+            detail::SpdSolver nested;
+            nested.compute(A, "test");
+            inside = nested.solve(B);
+        }
+    }
+    EXPECT_EQ(at_top, inside);
+    EXPECT_LT((A * at_top - B).norm(), 1e-8 * B.norm());
 }
 
 }  // namespace

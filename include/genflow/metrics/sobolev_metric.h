@@ -18,6 +18,8 @@ struct SobolevOptions {
     double mu = 0.0;
     /// The outer mass matrix M. The Δ² term of H2 always uses the lumped barycentric D.
     MassType mass = MassType::Barycentric;
+    /// How G is factored (Factorization::Supernodal for a flow that has the machine to itself).
+    Factorization factorization = Factorization::BySize;
 };
 
 /// The Sobolev H1 metric <u, w> = ∫ u·w dA + λ ∫ ∇u·∇w dA (paper §4), i.e. L = Id − λΔ:

@@ -3,6 +3,7 @@
 
 #include <memory>
 
+#include "genflow/metrics/factorization.h"
 #include "genflow/metrics/metric.h"
 
 namespace genflow {
@@ -23,7 +24,7 @@ namespace genflow {
 /// \endcode
 class SparseMetric : public Metric {
 public:
-    SparseMetric();
+    explicit SparseMetric(Factorization factorization = Factorization::BySize);
     ~SparseMetric() override;
     SparseMetric(SparseMetric&&) noexcept;
     SparseMetric& operator=(SparseMetric&&) noexcept;

@@ -3,6 +3,7 @@
 
 #include <memory>
 
+#include "genflow/metrics/factorization.h"
 #include "genflow/metrics/metric.h"
 
 namespace genflow {
@@ -17,6 +18,8 @@ struct VolumeControlledOptions {
     /// Relative tolerance of the iterative solves (CG for `apply()`, GMRES for the implicit
     /// step).
     double tolerance = 1e-10;
+    /// How the preconditioner D + dt·A is factored.
+    Factorization factorization = Factorization::BySize;
 };
 
 /// The volume-controlled metric of paper §5, in the corrected form of docs/formulas.md §4 (the
