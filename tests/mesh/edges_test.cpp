@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "genflow/mesh/primitives.h"
@@ -24,6 +26,31 @@ TEST(Edges, AreSortedUniqueAndOrdered) {
     Eigen::MatrixX2i expected(5, 2);
     expected << 0, 1, 0, 2, 1, 2, 1, 3, 2, 3;
     EXPECT_EQ(unique_edges(F), expected);
+}
+
+// Against a std::set of (min, max) pairs, on faces that repeat edges in every way a mesh can:
+// duplicate and reversed faces, an edge of three faces, a repeated index, an isolated vertex.
+TEST(Edges, AreTheSetOfTheFacesEdgesInOrder) {
+    Eigen::MatrixX3i F(7, 3);
+    F << 0, 1, 2, 2, 1, 0, 0, 1, 2, 1, 0, 3, 0, 1, 4, 5, 5, 6, 8, 6, 5;
+    std::set<std::pair<int, int>> expected;
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+        for (int k = 0; k < 3; ++k) {
+            const int a = F(f, k);
+            const int b = F(f, (k + 1) % 3);
+            if (a != b) {
+                expected.insert({std::min(a, b), std::max(a, b)});
+            }
+        }
+    }
+    const Eigen::MatrixX2i E = unique_edges(F);
+    ASSERT_EQ(E.rows(), static_cast<Eigen::Index>(expected.size()));
+    Eigen::Index row = 0;
+    for (const auto& [lo, hi] : expected) {
+        EXPECT_EQ(E(row, 0), lo) << row;
+        EXPECT_EQ(E(row, 1), hi) << row;
+        ++row;
+    }
 }
 
 TEST(Edges, BoundaryVerticesOfAGridAndAClosedMesh) {
