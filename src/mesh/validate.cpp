@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <numbers>
@@ -25,10 +26,10 @@ namespace {
 struct EdgeTraversal {
     int lo;
     int hi;
-    bool forward;  // the face runs lo → hi
     Eigen::Index face;
-    int corner_lo;  // corner index (0..2) of lo in the face
-    int corner_hi;
+    std::uint8_t corner_lo;  // corner index (0..2) of lo in the face
+    std::uint8_t corner_hi;
+    bool forward;  // the face runs lo → hi
 };
 
 // Counts a finding and remembers the first offender ("face 12", "edge 3-7") for the message.
@@ -188,11 +189,12 @@ std::vector<EdgeTraversal> grouped_half_edges(const TriangleMesh& mesh,
         for (int k = 0; k < 3; ++k) {
             const int from = mesh.F(f, k);
             const int to = mesh.F(f, (k + 1) % 3);
-            const int k_to = (k + 1) % 3;
+            const auto k_from = static_cast<std::uint8_t>(k);
+            const auto k_to = static_cast<std::uint8_t>((k + 1) % 3);
             if (from < to) {
-                half_edges.push_back({from, to, true, f, k, k_to});
+                half_edges.push_back({from, to, f, k_from, k_to, true});
             } else {
-                half_edges.push_back({to, from, false, f, k_to, k});
+                half_edges.push_back({to, from, f, k_to, k_from, false});
             }
         }
     }

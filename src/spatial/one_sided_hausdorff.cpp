@@ -109,8 +109,7 @@ struct Measured {
 
 // Edge midpoints measured so far. Two pieces sharing an edge (neighbours, or a corner child and
 // the middle child) meet at the same midpoint, to the bit (0.5·(a + b) is symmetric), so each
-// is measured once: on the armadillo against its decimation 15 % (one way) to 40 % (the other)
-// fewer queries and 8 % less time than splitting each piece on its own.
+// is measured once: 15–40 % fewer queries than splitting each piece on its own.
 class MidpointMemo {
 public:
     // The slot of p's measurement, asking for it if new.
@@ -170,9 +169,9 @@ std::array<Piece, 4> children(const Piece& piece, const Piece& mid) {
 // generation of pieces at a time: every piece whose proven upper bound exceeds the best distance
 // found by more than the tolerance is split in four, measuring its edge midpoints; the others
 // are dropped. A generation keeps the order of the faces, so that consecutive queries land near
-// each other in the target's tree (taking the largest bound first, in a priority queue, split a
-// third fewer pieces but scattered the queries and was slower); it is split in parallel and
-// merged in order, so the result is the same for any thread count.
+// each other in the target's tree (faster than taking the largest bound first, which splits
+// fewer pieces but scatters the queries: docs/benchmarks.md, "Exact Hausdorff"); it is split in
+// parallel and merged in order, so the result is the same for any thread count.
 class BoundAndPrune {
 public:
     BoundAndPrune(const Target& target, double tolerance, Farthest farthest)
