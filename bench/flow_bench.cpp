@@ -19,6 +19,7 @@
 #include <Eigen/CholmodSupport>
 #endif
 
+#include "cost_curve.h"
 #include "genflow/energies/surface_area_energy.h"
 #include "genflow/io/read_mesh.h"
 #include "genflow/mesh/primitives.h"
@@ -83,12 +84,8 @@ void BM_FairingAssembleOnly(benchmark::State& state) {
 // The cost curve of smoothing: five implicit-fairing steps through the library (set-up, five
 // assemblies and factorizations, the solves) on a noisy torus of about V vertices.
 void BM_FairingFiveStepsCurve(benchmark::State& state) {
-    const auto vertices = static_cast<double>(state.range(0));
-    const int sides = static_cast<int>(std::lround(std::sqrt(0.8 * vertices)));
-    const genflow::TriangleMesh torus =
-        genflow::make_torus(static_cast<int>(std::lround(vertices / sides)), sides);
     const genflow::TriangleMesh noisy =
-        genflow::add_noise(torus, 0.3 * genflow::mean_edge_length(torus), 1);
+        genflow::bench::noisy_torus_of_size(static_cast<int>(state.range(0)), 0.3);
     for (auto _ : state) {
         benchmark::DoNotOptimize(genflow::implicit_fairing(noisy, {.steps = 5}).mesh.V.data());
     }
@@ -199,11 +196,7 @@ BENCHMARK(BM_FairingStepFirst)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingStepLater)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingAssembleOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingFiveStepsCurve)
-    ->ArgName("V")
-    ->Arg(1'000)
-    ->Arg(10'000)
-    ->Arg(50'000)
-    ->Arg(200'000)
+    ->Apply(genflow::bench::cost_curve_sizes)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_VolumeFairingStep)->Arg(10)->Arg(6)->Arg(4)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_H1StepCoarse)->Unit(benchmark::kMicrosecond);

@@ -5,13 +5,11 @@
 // closest-point queries they are made of.
 #include <benchmark/benchmark.h>
 
-#include <cmath>
 #include <map>
 #include <vector>
 
+#include "cost_curve.h"
 #include "genflow/matching/multiresolution.h"
-#include "genflow/mesh/primitives.h"
-#include "genflow/operators/mesh_size.h"
 #include "genflow/spatial/closest_point.h"
 #include "genflow/spatial/surface_distance.h"
 
@@ -22,17 +20,14 @@ struct DistancePair {
     genflow::TriangleMesh coarse;
 };
 
-// A torus of about `vertices` vertices (rings : sides = 5 : 4), noisy by 5 % of its edge length,
-// and its simplification to a tenth.
+// A noisy torus of about `vertices` vertices (5 % of its edge length) and its simplification
+// to a tenth.
 const DistancePair& pair_of(int vertices) {
     static std::map<int, DistancePair> made;
     auto found = made.find(vertices);
     if (found == made.end()) {
-        const int sides = static_cast<int>(std::lround(std::sqrt(0.8 * vertices)));
-        const genflow::TriangleMesh torus =
-            genflow::make_torus(static_cast<int>(std::lround(vertices / double(sides))), sides);
         DistancePair pair;
-        pair.fine = genflow::add_noise(torus, 0.05 * genflow::mean_edge_length(torus), 1);
+        pair.fine = genflow::bench::noisy_torus_of_size(vertices, 0.05);
         pair.coarse = genflow::coarsen(pair.fine, vertices / 10).mesh;
         found = made.emplace(vertices, std::move(pair)).first;
     }
@@ -78,11 +73,7 @@ void BM_BvhClosestPoint(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_ExactHausdorff)
-    ->ArgName("V")
-    ->Arg(1'000)
-    ->Arg(10'000)
-    ->Arg(50'000)
-    ->Arg(200'000)
+    ->Apply(genflow::bench::cost_curve_sizes)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SurfaceDistancesWithMean)
     ->ArgName("V")
