@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <string>
 
 #include "cli_support.h"
 #include "commands.h"
@@ -108,30 +109,33 @@ nlohmann::json distance_summary(const DistanceOptions& options, const SurfaceDis
     return summary;
 }
 
-void print_hausdorff_text(const DistanceOptions& options, const SurfaceDistances& d,
-                          double diagonal) {
-    std::printf("%s -> %s: Hausdorff %.6g (<= %.6g)\n", options.a.c_str(), options.b.c_str(),
-                d.a_to_b.hausdorff, d.a_to_b.hausdorff_upper_bound);
-    std::printf("%s -> %s: Hausdorff %.6g (<= %.6g)\n", options.b.c_str(), options.a.c_str(),
-                d.b_to_a.hausdorff, d.b_to_a.hausdorff_upper_bound);
-    std::printf("symmetric: Hausdorff %.6g (%.4g%% of the bbox diagonal)\n", d.hausdorff,
-                100 * d.hausdorff / diagonal);
-}
-
-void print_full_text(const DistanceOptions& options, const SurfaceDistances& d,
+// A line a direction and a symmetric one: the Hausdorff distance (with its bound), and the mean
+// and RMS unless --hausdorff-only; then d_H.
+void print_distances(const DistanceOptions& options, const SurfaceDistances& d,
                      const nlohmann::json& summary) {
-    std::printf("%s -> %s: Hausdorff %.6g (<= %.6g), mean %.6g, rms %.6g\n", options.a.c_str(),
-                options.b.c_str(), d.a_to_b.hausdorff, d.a_to_b.hausdorff_upper_bound,
-                d.a_to_b.mean, d.a_to_b.rms);
-    std::printf("%s -> %s: Hausdorff %.6g (<= %.6g), mean %.6g, rms %.6g\n", options.b.c_str(),
-                options.a.c_str(), d.b_to_a.hausdorff, d.b_to_a.hausdorff_upper_bound,
-                d.b_to_a.mean, d.b_to_a.rms);
-    std::printf("symmetric: Hausdorff %.6g (%.4g%% of the bbox diagonal), mean %.6g, rms %.6g\n",
-                d.hausdorff, 100 * d.hausdorff / summary["bbox_diagonal"].get<double>(), d.mean,
-                d.rms);
-    const nlohmann::json& pseudo = summary["pseudo_hausdorff"];
-    std::printf("pseudo-Hausdorff d_H (alpha %g, epsilon %.6g): %.6g\n", options.alpha,
-                pseudo["epsilon"].get<double>(), pseudo["value"].get<double>());
+    const bool with_mean = !options.hausdorff_only;
+    const auto one_sided = [&](const std::string& from, const std::string& to,
+                               const OneSidedDistance& side) {
+        std::printf("%s -> %s: Hausdorff %.6g (<= %.6g)", from.c_str(), to.c_str(), side.hausdorff,
+                    side.hausdorff_upper_bound);
+        if (with_mean) {
+            std::printf(", mean %.6g, rms %.6g", side.mean, side.rms);
+        }
+        std::printf("\n");
+    };
+    one_sided(options.a, options.b, d.a_to_b);
+    one_sided(options.b, options.a, d.b_to_a);
+    std::printf("symmetric: Hausdorff %.6g (%.4g%% of the bbox diagonal)", d.hausdorff,
+                100 * d.hausdorff / summary["bbox_diagonal"].get<double>());
+    if (with_mean) {
+        std::printf(", mean %.6g, rms %.6g", d.mean, d.rms);
+    }
+    std::printf("\n");
+    if (with_mean) {
+        const nlohmann::json& pseudo = summary["pseudo_hausdorff"];
+        std::printf("pseudo-Hausdorff d_H (alpha %g, epsilon %.6g): %.6g\n", options.alpha,
+                    pseudo["epsilon"].get<double>(), pseudo["value"].get<double>());
+    }
 }
 
 void print_outputs(const DistanceOptions& options, const ColorScale& scale) {
@@ -149,11 +153,7 @@ void print_outputs(const DistanceOptions& options, const ColorScale& scale) {
 
 void print_distance_text(const DistanceOptions& options, const SurfaceDistances& d,
                          const nlohmann::json& summary, const ColorScale& scale) {
-    if (options.hausdorff_only) {
-        print_hausdorff_text(options, d, summary["bbox_diagonal"].get<double>());
-    } else {
-        print_full_text(options, d, summary);
-    }
+    print_distances(options, d, summary);
     print_outputs(options, scale);
 }
 
