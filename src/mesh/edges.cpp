@@ -56,6 +56,21 @@ std::vector<HalfEdge> lone_half_edges(const Eigen::MatrixX3i& F) {
     return once;
 }
 
+// Each edge once, in (lo, hi) order, by sorting whole half-edges: for faces with any index, such
+// as negative ones, which unique_edges() cannot bucket.
+Eigen::MatrixX2i unique_edges_by_sorting(const Eigen::MatrixX3i& F) {
+    std::vector<HalfEdge> edges = sorted_half_edges(F);
+    edges.erase(std::unique(edges.begin(), edges.end(),
+                            [](const HalfEdge& x, const HalfEdge& y) { return x.key == y.key; }),
+                edges.end());
+    Eigen::MatrixX2i E(static_cast<Eigen::Index>(edges.size()), 2);
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+        E(static_cast<Eigen::Index>(e), 0) = edges[e].key.first;
+        E(static_cast<Eigen::Index>(e), 1) = edges[e].key.second;
+    }
+    return E;
+}
+
 }  // namespace
 
 Eigen::MatrixX2i boundary_edges(const Eigen::MatrixX3i& F) {
@@ -92,26 +107,10 @@ std::vector<bool> boundary_vertices(const Eigen::MatrixX3i& F, Eigen::Index num_
 // sort of bare indices, four bytes an entry), each bucket's few higher vertices sorted and
 // deduplicated in place. The order of sorting whole half-edges, at a third of its time.
 Eigen::MatrixX2i unique_edges(const Eigen::MatrixX3i& F) {
-    int vertices = 0;
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        for (int k = 0; k < 3; ++k) {
-            if (F(f, k) < 0) {  // not a mesh's index: the general path orders anything
-                std::vector<HalfEdge> edges = sorted_half_edges(F);
-                edges.erase(std::unique(edges.begin(), edges.end(),
-                                        [](const HalfEdge& x, const HalfEdge& y) {
-                                            return x.key == y.key;
-                                        }),
-                            edges.end());
-                Eigen::MatrixX2i E(static_cast<Eigen::Index>(edges.size()), 2);
-                for (std::size_t e = 0; e < edges.size(); ++e) {
-                    E(static_cast<Eigen::Index>(e), 0) = edges[e].key.first;
-                    E(static_cast<Eigen::Index>(e), 1) = edges[e].key.second;
-                }
-                return E;
-            }
-            vertices = std::max(vertices, F(f, k) + 1);
-        }
+    if (F.size() > 0 && F.minCoeff() < 0) {
+        return unique_edges_by_sorting(F);
     }
+    const int vertices = F.size() > 0 ? F.maxCoeff() + 1 : 0;
     const auto n = static_cast<std::size_t>(vertices);
     std::vector<int> start(n + 1, 0);
     const auto for_each_edge = [&F](auto&& visit) {
