@@ -2,8 +2,6 @@
 #include "genflow/metrics/sobolev_metric.h"
 
 #include <cmath>
-#include <mutex>
-#include <optional>
 
 #include "genflow/exceptions.h"
 #include "genflow/operators/cotan_stiffness.h"
@@ -13,10 +11,7 @@
 
 namespace genflow {
 
-struct H1Metric::PatternCache {
-    std::mutex mutex;  // assemble() is const
-    std::optional<detail::StiffnessPattern> pattern;
-};
+struct H1Metric::PatternCache : detail::StiffnessPatternCache {};
 
 H1Metric::H1Metric(SobolevOptions options)
     : SparseMetric(options.factorization),
@@ -38,14 +33,9 @@ Eigen::SparseMatrix<double> H1Metric::assemble(const TriangleMesh& mesh) const {
                options_.lambda * cotan_stiffness(mesh);
     }
     // The same matrix to the bit (StiffnessPattern), without sorting its entries again.
-    const std::lock_guard lock(pattern_cache_->mutex);
-    std::optional<detail::StiffnessPattern>& pattern = pattern_cache_->pattern;
-    if (!pattern || !pattern->fits(mesh)) {
-        detail::require_valid_mesh(mesh, "H1Metric");  // a mesh that fits has valid indices
-        pattern.emplace(mesh);
-    }
-    return pattern->diagonal_plus_stiffness(
-        mesh, detail::floored_lumped_masses(mesh, options_.mass), options_.lambda);
+    return pattern_cache_->diagonal_plus_stiffness(
+        mesh, detail::floored_lumped_masses(mesh, options_.mass), options_.lambda, CotanOptions{},
+        "H1Metric");
 }
 
 H2Metric::H2Metric(SobolevOptions options)

@@ -21,6 +21,11 @@ namespace genflow::detail {
 #ifdef GENFLOW_HAS_CHOLMOD
 // Below this many rows the factorization is simplicial, above it as CHOLMOD decides.
 constexpr Eigen::Index kSimplicialRows = 60000;
+// Factorization::ByFlopDensity: supernodal from this many flops per entry of the factor.
+// CHOLMOD's own switch (40) counts on a BLAS that is efficient on small blocks; on the
+// measured meshes simplicial is faster up to 71, supernodal from 102 (docs/benchmarks.md,
+// "Sparse factorization").
+constexpr double kSupernodalFlopDensity = 80;
 #endif
 
 namespace {
@@ -45,12 +50,47 @@ void factorize(Solver& solver, const Eigen::SparseMatrix<double>& A) {
     solver.factorize(A);
 }
 
+#ifdef GENFLOW_HAS_CHOLMOD
+// Eigen's CHOLMOD LLᵀ, telling which kind of factor it holds.
+class CholmodSolver
+    : public Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> {
+public:
+    [[nodiscard]] bool supernodal() const {
+        return m_cholmodFactor != nullptr && m_cholmodFactor->is_super != 0;
+    }
+};
+
+// Chooses between simplicial and supernodal LLᵀ before an analysis.
+void set_mode(CholmodSolver& solver, Factorization factorization, Eigen::Index rows) {
+    switch (factorization) {
+        case Factorization::Supernodal:
+            solver.setMode(Eigen::CholmodSupernodalLLt);
+            return;
+        case Factorization::ByFlopDensity:
+            // CHOLMOD's own choice with our switch; a simplicial factor is made LLᵀ, as the
+            // other modes make it.
+            solver.setMode(Eigen::CholmodAuto);
+            solver.cholmod().supernodal_switch = kSupernodalFlopDensity;
+            solver.cholmod().final_asis = 0;
+            solver.cholmod().final_ll = 1;
+            return;
+        case Factorization::BySize:
+            // CHOLMOD chooses the supernodal factorization by its flop count alone, but that
+            // one hands many small blocks to the BLAS, whose threads then contend with the
+            // flows run side by side. Simplicial is faster on whole matches up to 52K rows,
+            // supernodal from 84K (docs/benchmarks.md, "Sparse factorization").
+            solver.setMode(rows < kSimplicialRows ? Eigen::CholmodSimplicialLLt
+                                                  : Eigen::CholmodAuto);
+            return;
+    }
+}
+#endif
+
 }  // namespace
 
 struct SpdSolver::Impl {
 #ifdef GENFLOW_HAS_CHOLMOD
-    // LLᵀ, simplicial on small systems (kSimplicialRows).
-    Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+    CholmodSolver solver;  // LLᵀ, simplicial or supernodal (set_mode())
 #else
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
 #endif
@@ -101,14 +141,7 @@ void SpdSolver::compute(const Eigen::SparseMatrix<double>& A, const char* caller
     compressed.makeCompressed();
     if (!impl_->same_pattern(compressed)) {
 #ifdef GENFLOW_HAS_CHOLMOD
-        // CHOLMOD chooses the supernodal factorization by its flop count alone, but that one
-        // hands many small blocks to the BLAS, whose threads then contend with the flows run
-        // side by side. Simplicial is faster on whole matches up to 52K rows, supernodal from
-        // 84K (docs/benchmarks.md, "Sparse factorization").
-        impl_->solver.setMode(factorization_ == Factorization::Supernodal
-                                  ? Eigen::CholmodSupernodalLLt
-                              : compressed.rows() < kSimplicialRows ? Eigen::CholmodSimplicialLLt
-                                                                    : Eigen::CholmodAuto);
+        set_mode(impl_->solver, factorization_, compressed.rows());
 #endif
         impl_->solver.analyzePattern(compressed);
         impl_->rows = compressed.rows();
@@ -131,6 +164,14 @@ void SpdSolver::compute(const Eigen::SparseMatrix<double>& A, const char* caller
                           ": matrix is not positive definite (degenerate mesh, isolated vertices "
                           "with zero mass, or a non-positive parameter?)");
     }
+}
+
+bool SpdSolver::supernodal() const {
+#ifdef GENFLOW_HAS_CHOLMOD
+    return impl_->factored && impl_->solver.supernodal();
+#else
+    return false;
+#endif
 }
 
 Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& B) const {

@@ -30,6 +30,9 @@ public:
     /// How many symbolic analyses were run (for tests of the reuse).
     [[nodiscard]] int analyses() const { return analyses_; }
 
+    /// Whether the last factorization is supernodal (for tests of the choice).
+    [[nodiscard]] bool supernodal() const;
+
     /// "CHOLMOD" or "Eigen SimplicialLDLT".
     [[nodiscard]] static const char* backend();
 

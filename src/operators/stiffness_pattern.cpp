@@ -5,6 +5,7 @@
 
 #include "genflow/exceptions.h"
 #include "operators/cotan_entries.h"
+#include "operators/triangle.h"
 
 namespace genflow::detail {
 
@@ -71,6 +72,17 @@ Eigen::SparseMatrix<double> StiffnessPattern::diagonal_plus_stiffness(
         values[s] = diagonal[i] + (in_stiffness_[s] != 0 ? lambda * stiffness[s] : 0.0);
     }
     return sum;
+}
+
+Eigen::SparseMatrix<double> StiffnessPatternCache::diagonal_plus_stiffness(
+    const TriangleMesh& mesh, const Eigen::VectorXd& diagonal, double lambda,
+    const CotanOptions& options, const char* caller) {
+    const std::lock_guard lock(mutex_);
+    if (!pattern_ || !pattern_->fits(mesh)) {
+        require_valid_mesh(mesh, caller);  // a mesh that fits has valid indices
+        pattern_.emplace(mesh);
+    }
+    return pattern_->diagonal_plus_stiffness(mesh, diagonal, lambda, options);
 }
 
 }  // namespace genflow::detail

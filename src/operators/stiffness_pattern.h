@@ -8,6 +8,8 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <mutex>
+#include <optional>
 #include <vector>
 
 #include "genflow/mesh.h"
@@ -38,6 +40,21 @@ private:
     std::vector<Eigen::Index> entry_slot_;     // per entry of for_each_cotan_entry(): its slot
     std::vector<Eigen::Index> diagonal_slot_;  // per vertex
     std::vector<char> in_stiffness_;           // per slot: whether K has an entry there
+};
+
+/// The StiffnessPattern of the last connectivity assembled, rebuilt when the faces change, for
+/// assemblers that are const and may be called from several threads (one lock per assembly).
+class StiffnessPatternCache {
+public:
+    /// StiffnessPattern::diagonal_plus_stiffness() for any valid mesh; `caller` names the
+    /// assembler in the error of an invalid one.
+    [[nodiscard]] Eigen::SparseMatrix<double> diagonal_plus_stiffness(
+        const TriangleMesh& mesh, const Eigen::VectorXd& diagonal, double lambda,
+        const CotanOptions& options, const char* caller);
+
+private:
+    std::mutex mutex_;
+    std::optional<StiffnessPattern> pattern_;
 };
 
 }  // namespace genflow::detail

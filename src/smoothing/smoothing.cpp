@@ -101,10 +101,11 @@ FlowResult area_flow(const TriangleMesh& mesh, const SmoothingOptions& options, 
 
 }  // namespace
 
-// A smoothing flow has the machine to itself: supernodal factorizations, twice as fast as
-// simplicial ones on the 48K horse and as fast on the 43K armadillo (docs/benchmarks.md,
-// "Against the anchors").
-constexpr Factorization kSmoothingFactorization = Factorization::Supernodal;
+// A smoothing flow has the machine to itself: supernodal factorizations where the factor is
+// dense enough for the BLAS to pay (twice as fast as simplicial on the 48K horse), simplicial
+// below (on the 43K armadillo a step takes 56 instead of 62 ms; docs/benchmarks.md, "Sparse
+// factorization").
+constexpr Factorization kSmoothingFactorization = Factorization::ByFlopDensity;
 
 FlowResult mean_curvature_flow(const TriangleMesh& mesh, const SmoothingOptions& options) {
     const double h = prepare(mesh, options, "mean_curvature_flow");

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCore>
+#include <array>
+#include <string>
 #include <vector>
 
 #include "genflow/exceptions.h"
@@ -36,6 +38,32 @@ Eigen::SparseMatrix<double> sphere_h1_matrix(int level, int copies) {
     return A;
 }
 
+// The 7-point Laplacian of a k×k×k grid plus the identity: a factor far denser in flops per
+// entry than a surface mesh's (nested fill in three dimensions).
+Eigen::SparseMatrix<double> grid_laplacian(int k) {
+    const auto index = [k](int x, int y, int z) { return (z * k + y) * k + x; };
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int z = 0; z < k; ++z) {
+        for (int y = 0; y < k; ++y) {
+            for (int x = 0; x < k; ++x) {
+                const int i = index(x, y, z);
+                entries.emplace_back(i, i, 7.0);
+                for (const auto& [dx, dy, dz] :
+                     {std::array{1, 0, 0}, std::array{0, 1, 0}, std::array{0, 0, 1}}) {
+                    if (x + dx < k && y + dy < k && z + dz < k) {
+                        const int j = index(x + dx, y + dy, z + dz);
+                        entries.emplace_back(i, j, -1.0);
+                        entries.emplace_back(j, i, -1.0);
+                    }
+                }
+            }
+        }
+    }
+    Eigen::SparseMatrix<double> A(k * k * k, k * k * k);
+    A.setFromTriplets(entries.begin(), entries.end());
+    return A;
+}
+
 void expect_solves(const Eigen::SparseMatrix<double>& A,
                    Factorization factorization = Factorization::BySize) {
     detail::SpdSolver solver(factorization);
@@ -62,6 +90,23 @@ TEST(SpdSolver, SolvesSmallAndLargeSystemsAndRefusesIndefiniteOnes) {
     expect_solves(sphere_h1_matrix(6, 2));  // 81,924 rows
     expect_solves(sphere_h1_matrix(3, 1), Factorization::Supernodal);
     expect_solves(sphere_h1_matrix(5, 1), Factorization::Supernodal);  // 10,242 rows
+}
+
+// ByFlopDensity factors a sparse-filling matrix (37 flops per entry of the factor) simplicially
+// and a dense-filling one supernodally, and solves both.
+TEST(SpdSolver, ChoosesTheFactorizationByFlopDensity) {
+    const Eigen::SparseMatrix<double> surface = sphere_h1_matrix(3, 1);
+    const Eigen::SparseMatrix<double> volume = grid_laplacian(24);
+    expect_solves(surface, Factorization::ByFlopDensity);
+    expect_solves(volume, Factorization::ByFlopDensity);
+    detail::SpdSolver solver(Factorization::ByFlopDensity);
+    solver.compute(surface, "test");
+    EXPECT_FALSE(solver.supernodal());
+    solver.compute(volume, "test");
+    EXPECT_EQ(solver.supernodal(), std::string(detail::SpdSolver::backend()) == "CHOLMOD");
+    detail::SpdSolver supernodal(Factorization::Supernodal);
+    supernodal.compute(surface, "test");
+    EXPECT_EQ(supernodal.supernodal(), std::string(detail::SpdSolver::backend()) == "CHOLMOD");
 }
 
 // The two factorizations of the same matrix agree to rounding.

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <vector>
 
+#include "genflow/energies/surface_area_energy.h"
 #include "genflow/exceptions.h"
 #include "genflow/mesh/primitives.h"
 #include "genflow/metrics/sobolev_metric.h"
@@ -110,6 +111,37 @@ TEST(StiffnessPattern, H1MetricFollowsAChangeOfConnectivity) {
     for (const TriangleMesh* mesh : {&sphere, &torus, &sphere}) {
         metric.update(*mesh);
         expect_identical(eigen_sum(*mesh, lambda), metric.matrix());
+    }
+}
+
+// The area's linearization K comes from a pattern cache: the values of cotan_stiffness() at
+// every step of a flow, after a change of connectivity, and in a copy.
+TEST(StiffnessPattern, AreaLinearizationIsTheStiffnessMatrix) {
+    const TriangleMesh sphere = test::noisy_icosphere(2);
+    const TriangleMesh torus = test::noisy_torus(10, 6);
+    const TriangleMesh moved{1.3 * sphere.V + 0.2 * sphere.V.cwiseAbs2(), sphere.F};
+    const TriangleMesh awkward = awkward_mesh();
+    const SurfaceAreaEnergy area({.max_cotangent = 2.0});
+    for (const TriangleMesh* mesh : {&sphere, &moved, &torus, &sphere, &awkward}) {
+        const auto linearization = area.linearize(*mesh);
+        ASSERT_TRUE(linearization);
+        const Eigen::SparseMatrix<double> K = cotan_stiffness(*mesh, {.max_cotangent = 2.0});
+        EXPECT_EQ(Eigen::MatrixXd(linearization->A - K).cwiseAbs().maxCoeff(), 0.0);
+        EXPECT_EQ(linearization->B.cwiseAbs().maxCoeff(), 0.0);
+    }
+    // A copy keeps its own cache: each follows its own mesh.
+    const SurfaceAreaEnergy copy = area;
+    for (int round = 0; round < 2; ++round) {
+        EXPECT_EQ(Eigen::MatrixXd(copy.linearize(torus)->A -
+                                  cotan_stiffness(torus, {.max_cotangent = 2.0}))
+                      .cwiseAbs()
+                      .maxCoeff(),
+                  0.0);
+        EXPECT_EQ(Eigen::MatrixXd(area.linearize(sphere)->A -
+                                  cotan_stiffness(sphere, {.max_cotangent = 2.0}))
+                      .cwiseAbs()
+                      .maxCoeff(),
+                  0.0);
     }
 }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <memory>
+
 #include "genflow/energies/energy.h"
 #include "genflow/operators/cotan_stiffness.h"
 
@@ -18,7 +20,13 @@ namespace genflow {
 ///       the cotangent clamp of needle triangles.
 class SurfaceAreaEnergy final : public Energy {
 public:
-    explicit SurfaceAreaEnergy(CotanOptions options = {}) : options_(options) {}
+    explicit SurfaceAreaEnergy(CotanOptions options = {});
+    ~SurfaceAreaEnergy() override;
+    /// A copy has the options and its own (empty) cache of the stiffness pattern.
+    SurfaceAreaEnergy(const SurfaceAreaEnergy& other);
+    SurfaceAreaEnergy& operator=(const SurfaceAreaEnergy& other);
+    SurfaceAreaEnergy(SurfaceAreaEnergy&&) noexcept;
+    SurfaceAreaEnergy& operator=(SurfaceAreaEnergy&&) noexcept;
 
     [[nodiscard]] double value(const TriangleMesh& mesh) const override;
     [[nodiscard]] VertexField differential(const TriangleMesh& mesh) const override;
@@ -26,6 +34,10 @@ public:
 
 private:
     CotanOptions options_;
+    // The sparsity pattern of K for the last connectivity linearized: a flow linearizes the
+    // same faces at every step.
+    struct PatternCache;
+    std::unique_ptr<PatternCache> pattern_cache_;
 };
 
 }  // namespace genflow

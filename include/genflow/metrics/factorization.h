@@ -12,6 +12,12 @@ enum class Factorization {
     /// Supernodal at every size: the faster for a flow that has the machine to itself (on the
     /// 48K horse a factorization takes 48 instead of 103 ms; docs/benchmarks.md).
     Supernodal,
+    /// Supernodal where the factorization does at least 80 flops per entry of the factor,
+    /// simplicial below: the faster of the two, on either side, for a flow that has the machine
+    /// to itself (at 71 flops per entry, the 43K armadillo, a simplicial factorization and solve
+    /// take 40 instead of 46 ms; at 102, a 40K range scan, 72 instead of 47 ms;
+    /// docs/benchmarks.md, "Sparse factorization").
+    ByFlopDensity,
 };
 
 }  // namespace genflow
