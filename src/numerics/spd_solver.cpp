@@ -24,7 +24,7 @@ constexpr Eigen::Index kSimplicialRows = 60000;
 // Factorization::ByFlopDensity: supernodal from this many flops per entry of the factor.
 // CHOLMOD's own switch (40) counts on a BLAS that is efficient on small blocks; on the
 // measured meshes simplicial is faster up to 71, supernodal from 102 (docs/benchmarks.md,
-// "Sparse factorization").
+// "By flop density").
 constexpr double kSupernodalFlopDensity = 80;
 #endif
 

@@ -103,8 +103,8 @@ FlowResult area_flow(const TriangleMesh& mesh, const SmoothingOptions& options, 
 
 // A smoothing flow has the machine to itself: supernodal factorizations where the factor is
 // dense enough for the BLAS to pay (twice as fast as simplicial on the 48K horse), simplicial
-// below (on the 43K armadillo a step takes 56 instead of 62 ms; docs/benchmarks.md, "Sparse
-// factorization").
+// below (on the 43K armadillo a step takes 58 instead of 62 ms; docs/benchmarks.md, "By flop
+// density").
 constexpr Factorization kSmoothingFactorization = Factorization::ByFlopDensity;
 
 FlowResult mean_curvature_flow(const TriangleMesh& mesh, const SmoothingOptions& options) {

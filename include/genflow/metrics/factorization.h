@@ -16,7 +16,7 @@ enum class Factorization {
     /// simplicial below: the faster of the two, on either side, for a flow that has the machine
     /// to itself (at 71 flops per entry, the 43K armadillo, a simplicial factorization and solve
     /// take 40 instead of 46 ms; at 102, a 40K range scan, 72 instead of 47 ms;
-    /// docs/benchmarks.md, "Sparse factorization").
+    /// docs/benchmarks.md, "By flop density").
     ByFlopDensity,
 };
 
