@@ -92,7 +92,7 @@ void BM_FairingFiveStepsCurve(benchmark::State& state) {
     state.counters["V"] = static_cast<double>(noisy.V.rows());
 }
 
-// Argument k: GMRES to a relative residual of 10^-k (6: what volume_controlled_fairing() asks).
+// Argument k: GMRES to a relative residual of 10^-k (4: what volume_controlled_fairing() asks).
 void BM_VolumeFairingStep(benchmark::State& state) {
     const genflow::SurfaceAreaEnergy area;
     genflow::VolumeControlledMetric metric(

@@ -24,8 +24,6 @@ VertexField unflatten(const Eigen::VectorXd& vector) {
     return Eigen::Map<const VertexField>(vector.data(), vector.size() / 3, 3);
 }
 
-using RowField = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-
 }  // namespace
 
 struct VolumeControlledMetric::Impl {
@@ -46,14 +44,21 @@ struct VolumeControlledMetric::Impl {
         return detail::zero_fixed_rows(std::move(field), fixed);
     }
 
-    // P v = N Ψᵀ diag(1/a) Ψ D Nᵀ v.
-    VertexField project(const VertexField& v) const {
-        const Eigen::VectorXd f = (normals.array() * v.array()).rowwise().sum();
+    // Nᵀ v: the normal speeds of v.
+    Eigen::VectorXd normal_speeds(const VertexField& v) const {
+        return (normals.array() * v.array()).rowwise().sum();
+    }
+
+    // S f = Ψᵀ diag(1/a) Ψ D f: normal speeds averaged over the one-rings of the one-rings.
+    Eigen::VectorXd averaged(const Eigen::VectorXd& f) const {
         const Eigen::VectorXd psi_mf =
             adjacency * (masses.cwiseProduct(f).cwiseQuotient(ring_sizes));
-        const Eigen::VectorXd k =
-            (adjacency * psi_mf.cwiseQuotient(ring_areas)).cwiseQuotient(ring_sizes);
-        return normals.array().colwise() * k.array();
+        return (adjacency * psi_mf.cwiseQuotient(ring_areas)).cwiseQuotient(ring_sizes);
+    }
+
+    // P v = N S Nᵀ v.
+    VertexField project(const VertexField& v) const {
+        return normals.array().colwise() * averaged(normal_speeds(v)).array();
     }
 
     // B v = v − (1 − λ) P v on the free vertices (fixed rows stay zero).
@@ -159,7 +164,7 @@ VertexField VolumeControlledMetric::shifted_gradient(const Eigen::SparseMatrix<d
         throw InvalidInput(
             "VolumeControlledMetric::shifted_gradient: A must be #V×#V and dt finite, >= 0");
     }
-    // (D B⁻¹ + dt A) y = R with y = B z  ⇔  (D + dt A B) z = R: solve for z, return B z.
+    // H = D + dt·A with the fixed rows pinned, factored once: every solve below is with it.
     Eigen::SparseMatrix<double> fairing = dt * A;
     for (Eigen::Index i = 0; i < n; ++i) {
         fairing.coeffRef(i, i) += d.masses[i];
@@ -168,29 +173,36 @@ VertexField VolumeControlledMetric::shifted_gradient(const Eigen::SparseMatrix<d
     fairing.makeCompressed();
     d.preconditioner.compute(fairing, "VolumeControlledMetric::shifted_gradient");
 
-    // GMRES works on the fields interleaved (x, y, z of a vertex side by side), so that A, whose
-    // transpose it is (A is symmetric), multiplies all three coordinates in one pass.
-    const auto system = [&](const Eigen::VectorXd& z) -> Eigen::VectorXd {
-        const VertexField Z = detail::deinterleave(z);
-        VertexField result = Z.array().colwise() * d.masses.array();
-        const RowField BZ = d.apply_b(Z, options_.lambda);
-        result += dt * (A.transpose() * BZ);
-        detail::copy_fixed_rows(result, Z, d.fixed);
-        return detail::interleave(result);
+    // (D B⁻¹ + dt A) y = R, i.e. (D + dt A B) z = R with y = B z. B = I − (1 − λ) Zf N S Nᵀ Zf
+    // (Zf zeroes the fixed rows) moves the normal speeds f = Nᵀ Zf z alone, so with
+    // u = Zf N S f and dt·A·u = H u − D u on the free rows,
+    //     z = h + (1 − λ)(u − H⁻¹ D u),   h = H⁻¹ Zf R,
+    //     y = B z = z − (1 − λ) u = h − (1 − λ) H⁻¹ D u,
+    // and f solves the n×n system
+    //     f − (1 − λ) Nᵀ Zf (u − H⁻¹ D u) = Nᵀ Zf h.
+    // GMRES on it applies one solve with H a step and no product with A; each step's H⁻¹ D u
+    // is its image, from which GMRES combines H⁻¹ D u for the solution f without another solve.
+    const double softened = 1 - options_.lambda;
+    const auto normal_speeds = [&](const VertexField& v) {
+        return d.normal_speeds(d.zero_fixed(v));  // Nᵀ Zf v
     };
-    const auto precondition = [&](const Eigen::VectorXd& r) -> Eigen::VectorXd {
-        return detail::interleave(d.preconditioner.solve(detail::deinterleave(r)));
+    const auto system = [&](const Eigen::VectorXd& f, Eigen::MatrixXd& image) -> Eigen::VectorXd {
+        const VertexField u = d.zero_fixed(d.normals.array().colwise() * d.averaged(f).array());
+        image = d.preconditioner.solve(u.array().colwise() * d.masses.array());
+        return f - softened * normal_speeds(u - image);
     };
-    const Eigen::VectorXd rhs = detail::interleave(d.zero_fixed(R));
-    const auto solved =
-        detail::gmres(system, precondition, rhs, precondition(rhs), options_.tolerance, 50, 1000);
+    const VertexField h = d.preconditioner.solve(d.zero_fixed(R));
+    const auto solved = detail::gmres(system, normal_speeds(h), options_.tolerance, 50, 1000);
     d.last_iterations = solved.iterations;
     if (!solved.converged) {
         throw SolverError("VolumeControlledMetric::shifted_gradient: GMRES did not converge in " +
                           std::to_string(solved.iterations) + " iterations (residual " +
                           std::to_string(solved.relative_residual) + ")");
     }
-    return d.apply_b(detail::deinterleave(solved.x), options_.lambda);
+    if (solved.image.size() == 0) {
+        return h;  // f = 0: no normal speed to soften
+    }
+    return h - softened * solved.image;
 }
 
 VertexField VolumeControlledMetric::volume_changing_part(const VertexField& v) const {

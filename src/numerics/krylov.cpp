@@ -39,20 +39,32 @@ KrylovResult conjugate_gradient(const LinearOperator& A, const Eigen::VectorXd& 
     return result;
 }
 
-KrylovResult gmres(const LinearOperator& A, const LinearOperator& P, const Eigen::VectorXd& b,
-                   const Eigen::VectorXd& x0, double tolerance, int restart, int max_iterations) {
+namespace {
+
+// Restarted GMRES with right preconditioning. `apply(v, image)` returns A·v and, when the images
+// are kept (`image` not null), C·v in its second argument; `image` then receives C·x, and x0
+// must be zero (its image is then zero without an application).
+template <class Apply>
+KrylovResult restarted_gmres(const Apply& apply, const LinearOperator& P, const Eigen::VectorXd& b,
+                             const Eigen::VectorXd& x0, double tolerance, int restart,
+                             int max_iterations, Eigen::MatrixXd* image) {
     KrylovResult result;
     result.x = x0;
+    Eigen::MatrixXd scratch;
     const double b_norm = b.norm();
     if (b_norm == 0) {
         result.x.setZero();
         result.converged = true;
         return result;
     }
+    bool x_is_zero = image != nullptr;
     const Eigen::Index n = b.size();
     const int m = std::max(1, restart);
     while (result.iterations < max_iterations) {
-        const Eigen::VectorXd r = b - A(result.x);
+        const Eigen::VectorXd r = x_is_zero ? b : (b - apply(result.x, scratch)).eval();
+        if (image != nullptr && !x_is_zero) {
+            *image = scratch;  // C·x anew at a restart
+        }
         const double beta = r.norm();
         result.relative_residual = beta / b_norm;
         if (result.relative_residual <= tolerance) {
@@ -66,6 +78,7 @@ KrylovResult gmres(const LinearOperator& A, const LinearOperator& P, const Eigen
         // those, not m + 1 columns of the system's size.
         std::vector<Eigen::VectorXd> V{r / beta};
         std::vector<Eigen::VectorXd> Z;
+        std::vector<Eigen::MatrixXd> images;  // C·Z, when kept
         V.reserve(static_cast<std::size_t>(m) + 1);
         Z.reserve(static_cast<std::size_t>(m));
         Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m + 1, m);
@@ -77,7 +90,10 @@ KrylovResult gmres(const LinearOperator& A, const LinearOperator& P, const Eigen
         bool estimate_converged = false;
         for (; k < m && result.iterations < max_iterations; ++k) {
             Z.push_back(P(V[static_cast<std::size_t>(k)]));
-            Eigen::VectorXd w = A(Z.back());
+            Eigen::VectorXd w = apply(Z.back(), scratch);
+            if (image != nullptr) {
+                images.push_back(scratch);
+            }
             for (int j = 0; j <= k; ++j) {
                 H(j, k) = w.dot(V[static_cast<std::size_t>(j)]);
                 w -= H(j, k) * V[static_cast<std::size_t>(j)];
@@ -108,6 +124,17 @@ KrylovResult gmres(const LinearOperator& A, const LinearOperator& P, const Eigen
         for (int j = 0; j < k; ++j) {
             result.x += y[j] * Z[static_cast<std::size_t>(j)];
         }
+        if (image != nullptr) {
+            for (int j = 0; j < k; ++j) {
+                const Eigen::MatrixXd& term = images[static_cast<std::size_t>(j)];
+                if (x_is_zero && j == 0) {
+                    *image = y[j] * term;
+                } else {
+                    *image += y[j] * term;
+                }
+            }
+        }
+        x_is_zero = false;
         // The rotated right-hand side's last entry is the residual norm (in exact arithmetic,
         // and to rounding with modified Gram–Schmidt over one cycle): trusted, it saves the
         // product that would only confirm it.
@@ -117,8 +144,26 @@ KrylovResult gmres(const LinearOperator& A, const LinearOperator& P, const Eigen
             return result;
         }
     }
-    result.relative_residual = (b - A(result.x)).norm() / b_norm;
+    result.relative_residual = (b - apply(result.x, scratch)).norm() / b_norm;
     result.converged = result.relative_residual <= tolerance;
+    return result;
+}
+
+}  // namespace
+
+KrylovResult gmres(const LinearOperator& A, const LinearOperator& P, const Eigen::VectorXd& b,
+                   const Eigen::VectorXd& x0, double tolerance, int restart, int max_iterations) {
+    const auto apply = [&A](const Eigen::VectorXd& v, Eigen::MatrixXd&) { return A(v); };
+    return restarted_gmres(apply, P, b, x0, tolerance, restart, max_iterations, nullptr);
+}
+
+ImagedKrylovResult gmres(const ImagingOperator& A, const Eigen::VectorXd& b, double tolerance,
+                         int restart, int max_iterations) {
+    ImagedKrylovResult result;
+    const LinearOperator identity = [](const Eigen::VectorXd& v) { return v; };
+    static_cast<KrylovResult&>(result) =
+        restarted_gmres(A, identity, b, Eigen::VectorXd::Zero(b.size()), tolerance, restart,
+                        max_iterations, &result.image);
     return result;
 }
 

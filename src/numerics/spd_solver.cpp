@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "genflow/exceptions.h"
+#include "numerics/supernodal_solve.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -30,6 +31,44 @@ constexpr double kSupernodalFlopDensity = 80;
 
 namespace {
 
+#ifdef GENFLOW_HAS_CHOLMOD
+// Eigen's CHOLMOD LLᵀ, telling which kind of factor it holds.
+class CholmodSolver
+    : public Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> {
+public:
+    [[nodiscard]] bool supernodal() const {
+        return m_cholmodFactor != nullptr && m_cholmodFactor->is_super != 0;
+    }
+    [[nodiscard]] const cholmod_factor* factor() const { return m_cholmodFactor; }
+
+    // Factors A, both of whose triangles are stored, from the one CHOLMOD permutes with a
+    // single transpose: the upper one for a supernodal factor, which reading the lower one
+    // transposes twice (about 1 ms of the horse's 50), the lower one for a simplicial factor.
+    // The same bits for a symmetric A.
+    void factorize_either_triangle(const Eigen::SparseMatrix<double>& A) {
+        if (!supernodal()) {
+            factorize(A);
+            return;
+        }
+        cholmod_sparse upper = Eigen::viewAsCholmod(A);
+        upper.stype = 1;
+        cholmod_factorize_p(&upper, m_shiftOffset, nullptr, 0, m_cholmodFactor, &cholmod());
+        m_info =
+            m_cholmodFactor->minor == m_cholmodFactor->n ? Eigen::Success : Eigen::NumericalIssue;
+        m_factorizationIsOk = true;
+    }
+};
+
+void numeric_factorization(CholmodSolver& solver, const Eigen::SparseMatrix<double>& A) {
+    solver.factorize_either_triangle(A);
+}
+#else
+void numeric_factorization(Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower>& solver,
+                           const Eigen::SparseMatrix<double>& A) {
+    solver.factorize(A);
+}
+#endif
+
 // The numeric factorization, with CHOLMOD's own OpenMP regions held to one thread. Debian's
 // CHOLMOD opens a region of a fixed four threads for each large supernode (copying and zeroing
 // its columns, memory-bound work), whatever the thread count asked for; on two cores those
@@ -43,23 +82,14 @@ void factorize(Solver& solver, const Eigen::SparseMatrix<double>& A) {
 #ifdef _OPENMP
     if (!omp_in_parallel()) {
 #pragma omp teams num_teams(1) thread_limit(1)
-        solver.factorize(A);
+        numeric_factorization(solver, A);
         return;
     }
 #endif
-    solver.factorize(A);
+    numeric_factorization(solver, A);
 }
 
 #ifdef GENFLOW_HAS_CHOLMOD
-// Eigen's CHOLMOD LLᵀ, telling which kind of factor it holds.
-class CholmodSolver
-    : public Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> {
-public:
-    [[nodiscard]] bool supernodal() const {
-        return m_cholmodFactor != nullptr && m_cholmodFactor->is_super != 0;
-    }
-};
-
 // Chooses between simplicial and supernodal LLᵀ before an analysis.
 void set_mode(CholmodSolver& solver, Factorization factorization, Eigen::Index rows) {
     switch (factorization) {
@@ -179,9 +209,15 @@ Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& B) const {
         throw InvalidInput("SpdSolver::solve: no factorization of a matching size");
     }
     // Every column in one pass over the factor, 1.6× faster than one by one on the 48K horse's
-    // three (docs/benchmarks.md, "Against the anchors"). The simplicial solve gives each column
-    // the bits it gives alone; the supernodal one (the BLAS's blocked triangular solves) rounds
-    // otherwise, by 1e-10 of the coordinates.
+    // three (docs/benchmarks.md, "Against the anchors"). A supernodal factor and a few columns
+    // go to supernodal_solve(), whose rounding differs from CHOLMOD's by about 1e-16 of the
+    // solution. Both it and the simplicial solve give each column the bits it gives alone.
+#ifdef GENFLOW_HAS_CHOLMOD
+    const cholmod_factor* factor = impl_->solver.factor();
+    if (factor != nullptr && fits_supernodal_solve(*factor, B.cols())) {
+        return supernodal_solve(*factor, B);
+    }
+#endif
     return impl_->solver.solve(B);
 }
 

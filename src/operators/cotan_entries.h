@@ -14,26 +14,32 @@ namespace genflow::detail {
 /// Entries per face that for_each_cotan_entry() emits.
 constexpr int kCotanEntriesPerFace = 12;
 
-/// Calls entry(row, column, value) for the 12 entries of each face of `mesh` in turn (faces
-/// in order): per corner k, the edge (k+1, k+2) opposite it gives −w at (i, j) and (j, i) and
-/// +w at (i, i) and (j, j), w = ½ cot of the angle at k (bounded as CotanOptions says). A
-/// degenerate face emits zeros, so the pattern depends on F alone. Expects a valid mesh.
-template <typename Entry>
-void for_each_cotan_entry(const TriangleMesh& mesh, const CotanOptions& options, Entry&& entry) {
+/// Calls weight(i, j, w) for each corner k of each face of `mesh` in turn (faces in order, then
+/// corners), (i, j) the edge (k+1, k+2) opposite it and w = ½ cot of the angle at k (bounded as
+/// CotanOptions says). A degenerate face gives zeros. Expects a valid mesh.
+template <typename Weight>
+void for_each_cotan_weight(const TriangleMesh& mesh, const CotanOptions& options, Weight&& weight) {
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
         const Triangle t(mesh, f);
         const Eigen::Vector3d cots =
             t.degenerate() ? Eigen::Vector3d::Zero() : t.bounded_cots(options.max_cotangent);
         for (int k = 0; k < 3; ++k) {
-            const double w = 0.5 * cots[k];
-            const int i = mesh.F(f, (k + 1) % 3);
-            const int j = mesh.F(f, (k + 2) % 3);
-            entry(i, j, -w);
-            entry(j, i, -w);
-            entry(i, i, w);
-            entry(j, j, w);
+            weight(mesh.F(f, (k + 1) % 3), mesh.F(f, (k + 2) % 3), 0.5 * cots[k]);
         }
     }
+}
+
+/// Calls entry(row, column, value) for the 12 entries of each face of `mesh` in turn (faces
+/// in order): per corner, with for_each_cotan_weight()'s (i, j, w), −w at (i, j) and (j, i)
+/// and +w at (i, i) and (j, j). The pattern depends on F alone. Expects a valid mesh.
+template <typename Entry>
+void for_each_cotan_entry(const TriangleMesh& mesh, const CotanOptions& options, Entry&& entry) {
+    for_each_cotan_weight(mesh, options, [&](int i, int j, double w) {
+        entry(i, j, -w);
+        entry(j, i, -w);
+        entry(i, i, w);
+        entry(j, j, w);
+    });
 }
 
 }  // namespace genflow::detail

@@ -36,10 +36,12 @@ public:
 private:
     Eigen::Index vertices_ = 0;
     Eigen::MatrixX3i faces_;
-    Eigen::SparseMatrix<double> pattern_;      // compressed, column-major, every diagonal entry
-    std::vector<Eigen::Index> entry_slot_;     // per entry of for_each_cotan_entry(): its slot
-    std::vector<Eigen::Index> diagonal_slot_;  // per vertex
-    std::vector<char> in_stiffness_;           // per slot: whether K has an entry there
+    Eigen::SparseMatrix<double> pattern_;  // compressed, column-major, every diagonal entry
+    std::vector<int> edge_slot_;      // per corner of each face: the slots of (i, j) and (j, i)
+    std::vector<int> diagonal_slot_;  // per vertex
+    // Per slot: off the diagonal (K always has an entry there), or on it, with or without one.
+    enum class SlotKind : char { OffDiagonal, Diagonal, DiagonalWithStiffness };
+    std::vector<SlotKind> slot_kind_;
 };
 
 /// The StiffnessPattern of the last connectivity assembled, rebuilt when the faces change, for

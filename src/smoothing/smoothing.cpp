@@ -152,9 +152,9 @@ FlowResult higher_order_fairing(const TriangleMesh& mesh, const SmoothingOptions
 
 // The relative residual of volume-controlled fairing's implicit solves. After ten steps on the
 // noisy horse, stopping at 1e-4 moves the vertices from where an exact solve (1e-10) puts them
-// by 7e-5 of how far they moved (1e-6: 1e-6; 1e-3: 3.5e-4), far below the implicit Euler step's
-// own error, and takes 4 GMRES iterations a step where 1e-6 takes 7 and 1e-10 12
-// (docs/benchmarks.md, "Against the anchors").
+// by 5e-5 of how far they moved (1e-6: 2e-7; 1e-3: 4.5e-4), far below the implicit Euler step's
+// own error, and takes 5 GMRES iterations a step where 1e-6 takes 8 and 1e-10 12
+// (docs/benchmarks.md, "Volume-controlled fairing, the normal speeds alone").
 constexpr double kFairingSolveTolerance = 1e-4;
 
 FlowResult volume_controlled_fairing(const TriangleMesh& mesh, const SmoothingOptions& options) {

@@ -111,6 +111,22 @@ TEST(VolumeControlledMetric, ShiftedGradientSolvesTheImplicitSystem) {
     const VertexField y = metric.shifted_gradient(K, dt, R);
     EXPECT_LT(test::relative_error(metric.apply(y) + dt * (K * y), R), 1e-8);
     EXPECT_LT(metric.last_iterations(), 100);
+    // With vertices held, the system holds on the free rows and the held ones do not move.
+    std::vector<bool> fixed(static_cast<std::size_t>(mesh.V.rows()), false);
+    fixed[0] = fixed[7] = fixed[20] = true;
+    metric.set_fixed_vertices(fixed);
+    metric.update(mesh);
+    VertexField held = metric.shifted_gradient(K, dt, R);
+    for (const int i : {0, 7, 20}) {
+        EXPECT_EQ(held.row(i).norm(), 0.0);
+    }
+    VertexField residual = metric.apply(held) + dt * (K * held) - R;
+    VertexField free_rhs = R;
+    for (const int i : {0, 7, 20}) {
+        residual.row(i).setZero();
+        free_rhs.row(i).setZero();
+    }
+    EXPECT_LT(residual.norm(), 1e-8 * free_rhs.norm());
 }
 
 TEST(VolumeControlledMetric, VolumeLossShrinksWithLambdaAndIgnoresOrientation) {

@@ -90,6 +90,32 @@ TEST(Gmres, ReportsNonConvergence) {
     EXPECT_GT(solved.relative_residual, 1e-12);
 }
 
+// The imaged GMRES's C·x is the image of its solution, whether or not it restarts: combined
+// from the images of the vectors A was applied to, it must agree with C times the x returned.
+TEST(Gmres, GivesTheImageOfItsSolution) {
+    const int n = 60;
+    const Eigen::MatrixXd A = nonsymmetric(n, 2.0, 10);
+    const Eigen::MatrixXd C = nonsymmetric(n, 0.0, 11).topRows(2 * n / 3);  // any shape
+    const Eigen::VectorXd b = random_vector(n, 12);
+    int applications = 0;
+    const detail::ImagingOperator imaging = [&](const Eigen::VectorXd& v, Eigen::MatrixXd& image) {
+        ++applications;
+        image = C * v;
+        return Eigen::VectorXd(A * v);
+    };
+    for (const int restart : {50, 3}) {
+        applications = 0;
+        const auto solved = detail::gmres(imaging, b, 1e-10, restart, 500);
+        ASSERT_TRUE(solved.converged) << "restart " << restart;
+        EXPECT_LE((b - A * solved.x).norm(), 1e-10 * b.norm());
+        EXPECT_LT((solved.image - C * solved.x).norm(), 1e-12 * (C * solved.x).norm());
+        // One application an iteration, and one a restart for the residual (none at the
+        // start from zero).
+        const int restarts = (solved.iterations - 1) / restart;
+        EXPECT_EQ(applications, solved.iterations + restarts) << "restart " << restart;
+    }
+}
+
 TEST(ConjugateGradient, SolvesASymmetricPositiveDefiniteSystem) {
     const int n = 60;
     const Eigen::MatrixXd R = nonsymmetric(n, 0.0, 8);

@@ -121,6 +121,30 @@ TEST(SpdSolver, SupernodalAndSimplicialAgree) {
     EXPECT_LT((supernodal.solve(B) - X).norm(), 1e-10 * X.norm());
 }
 
+// A supernodal factor solves one to four columns by its own walk over the factor, and more
+// through CHOLMOD: every count solves, each column as it is solved alone, and both paths
+// agree. The grid Laplacian's supernodes are wide (many columns each), the sphere's narrow.
+TEST(SpdSolver, SolvesAnyNumberOfColumnsWithASupernodalFactor) {
+    const bool cholmod = std::string(detail::SpdSolver::backend()) == "CHOLMOD";
+    for (const Eigen::SparseMatrix<double>& A : {sphere_h1_matrix(5, 1), grid_laplacian(20)}) {
+        detail::SpdSolver solver(Factorization::Supernodal);
+        solver.compute(A, "test");
+        EXPECT_EQ(solver.supernodal(), cholmod);
+        const Eigen::MatrixXd B = test::random_matrix(A.rows(), 6, 4);
+        const Eigen::MatrixXd all = solver.solve(B);  // six columns: CHOLMOD's solve
+        EXPECT_LT((A * all - B).norm(), 1e-12 * B.norm()) << A.rows();
+        for (Eigen::Index columns = 1; columns <= 5; ++columns) {
+            const Eigen::MatrixXd X = solver.solve(B.leftCols(columns));
+            EXPECT_LT((X - all.leftCols(columns)).norm(), 1e-13 * all.leftCols(columns).norm())
+                << A.rows() << " rows, " << columns << " columns";
+            for (Eigen::Index c = 0; c < columns && columns <= 4 && cholmod; ++c) {
+                const Eigen::MatrixXd alone = solver.solve(B.col(c));
+                EXPECT_EQ(X.col(c), alone.col(0)) << columns << " columns, column " << c;
+            }
+        }
+    }
+}
+
 // Called at the top level, the factorization holds CHOLMOD's own thread teams to one thread;
 // inside a parallel region (a matcher's flows side by side) it runs as it is: the same bits.
 TEST(SpdSolver, FactorsToTheSameBitsInsideAndOutsideAParallelRegion) {

@@ -34,8 +34,9 @@ struct VolumeControlledOptions {
 ///
 /// G is dense and never formed: `gradient()` is the cheap B D⁻¹ dE/dX, `apply()` solves with B
 /// by conjugate gradients, and `shifted_gradient()` (the implicit step, eq. 13 made precise)
-/// solves (D + dt·A B) z = R by GMRES(50) preconditioned with the plain fairing matrix
-/// D + dt·A (one Cholesky factorization per step), and returns B z.
+/// solves (G + dt·A) y = R through the n×n system of the normal speeds that B changes, by
+/// GMRES(50) with one solve with the plain fairing matrix D + dt·A an iteration (one Cholesky
+/// factorization per step; docs/formulas.md §4).
 ///
 /// P does not depend on the sign of the normals, so inward-oriented meshes are handled alike.
 /// \note Works on any mesh; vertices without a normal (isolated, degenerate) have no normal
