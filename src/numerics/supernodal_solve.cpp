@@ -51,8 +51,9 @@ void forward(const Supernodes& L, double* z) {
             }
             for (int i = j + 1; i < height; ++i) {
                 double* zi = z + static_cast<std::ptrdiff_t>(C) * rows[i];
+                const double entry = column[i];  // read once: the stores to z may alias it
                 for (int c = 0; c < C; ++c) {
-                    zi[c] -= column[i] * value[c];
+                    zi[c] -= entry * value[c];
                 }
             }
         }
