@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace genflow::detail {
@@ -92,7 +93,7 @@ KrylovResult restarted_gmres(const Apply& apply, const LinearOperator& P, const 
             Z.push_back(P(V[static_cast<std::size_t>(k)]));
             Eigen::VectorXd w = apply(Z.back(), scratch);
             if (image != nullptr) {
-                images.push_back(scratch);
+                images.push_back(std::move(scratch));  // the next application refills it
             }
             for (int j = 0; j <= k; ++j) {
                 H(j, k) = w.dot(V[static_cast<std::size_t>(j)]);

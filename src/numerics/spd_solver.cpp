@@ -43,8 +43,9 @@ public:
 
     // Factors A, both of whose triangles are stored, from the one CHOLMOD permutes with a
     // single transpose: the upper one for a supernodal factor, which reading the lower one
-    // transposes twice (about 1 ms of the horse's 50), the lower one for a simplicial factor.
-    // The same bits for a symmetric A.
+    // transposes twice (about 1 ms of the horse's 50; docs/benchmarks.md, "The stiffness
+    // pattern and the factor's triangle"), the lower one for a simplicial factor. The same bits
+    // for a symmetric A.
     void factorize_either_triangle(const Eigen::SparseMatrix<double>& A) {
         if (!supernodal()) {
             factorize(A);

@@ -30,17 +30,30 @@ struct Supernodes {
           values(static_cast<const double*>(factor.x)) {}
 };
 
+// Supernode s of a factor: its first column, how many columns and rows, the rows' indices and
+// its column-major values.
+struct Supernode {
+    int first;
+    int width;
+    int height;
+    const int* rows;
+    const double* block;
+
+    Supernode(const Supernodes& L, int s)
+        : first(L.first_column[s]),
+          width(L.first_column[s + 1] - first),
+          height(L.row_start[s + 1] - L.row_start[s]),
+          rows(L.rows + L.row_start[s]),
+          block(L.values + L.value_start[s]) {}
+};
+
 // z := L⁻¹ z, z holding C columns interleaved (row k at z[C·k]). Column j of L, once its own
 // entry has divided row j, subtracts its multiples from the rows below it: L is read once, in
 // the order it is stored.
 template <int C>
 void forward(const Supernodes& L, double* z) {
     for (int s = 0; s < L.count; ++s) {
-        const int first = L.first_column[s];
-        const int width = L.first_column[s + 1] - first;
-        const int height = L.row_start[s + 1] - L.row_start[s];
-        const int* rows = L.rows + L.row_start[s];
-        const double* block = L.values + L.value_start[s];
+        const auto [first, width, height, rows, block] = Supernode(L, s);
         for (int j = 0; j < width; ++j) {
             const double* column = block + static_cast<std::ptrdiff_t>(j) * height;
             double* zj = z + static_cast<std::ptrdiff_t>(C) * (first + j);
@@ -64,11 +77,7 @@ void forward(const Supernodes& L, double* z) {
 template <int C>
 void backward(const Supernodes& L, double* z) {
     for (int s = L.count - 1; s >= 0; --s) {
-        const int first = L.first_column[s];
-        const int width = L.first_column[s + 1] - first;
-        const int height = L.row_start[s + 1] - L.row_start[s];
-        const int* rows = L.rows + L.row_start[s];
-        const double* block = L.values + L.value_start[s];
+        const auto [first, width, height, rows, block] = Supernode(L, s);
         for (int j = width - 1; j >= 0; --j) {
             const double* column = block + static_cast<std::ptrdiff_t>(j) * height;
             double sum[C] = {};

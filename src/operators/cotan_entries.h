@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <utility>
 
 #include "genflow/mesh.h"
 #include "genflow/operators/cotan_stiffness.h"
@@ -13,6 +14,12 @@ namespace genflow::detail {
 
 /// Entries per face that for_each_cotan_entry() emits.
 constexpr int kCotanEntriesPerFace = 12;
+
+/// The edge (i, j) opposite corner k of face f: its corners k+1 and k+2, in that order (the
+/// order of the entries below, and of StiffnessPattern's slots).
+inline std::pair<int, int> opposite_edge(const Eigen::MatrixX3i& F, Eigen::Index f, int k) {
+    return {F(f, (k + 1) % 3), F(f, (k + 2) % 3)};
+}
 
 /// Calls weight(i, j, w) for each corner k of each face of `mesh` in turn (faces in order, then
 /// corners), (i, j) the edge (k+1, k+2) opposite it and w = ½ cot of the angle at k (bounded as
@@ -24,7 +31,8 @@ void for_each_cotan_weight(const TriangleMesh& mesh, const CotanOptions& options
         const Eigen::Vector3d cots =
             t.degenerate() ? Eigen::Vector3d::Zero() : t.bounded_cots(options.max_cotangent);
         for (int k = 0; k < 3; ++k) {
-            weight(mesh.F(f, (k + 1) % 3), mesh.F(f, (k + 2) % 3), 0.5 * cots[k]);
+            const auto [i, j] = opposite_edge(mesh.F, f, k);
+            weight(i, j, 0.5 * cots[k]);
         }
     }
 }

@@ -90,8 +90,7 @@ StiffnessPattern::StiffnessPattern(const TriangleMesh& mesh)
     }
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
         for (int k = 0; k < 3; ++k) {
-            const int i = mesh.F(f, (k + 1) % 3);
-            const int j = mesh.F(f, (k + 2) % 3);
+            const auto [i, j] = opposite_edge(mesh.F, f, k);
             edge_slot_.push_back(slot_of(i, j));
             edge_slot_.push_back(slot_of(j, i));
             for (const int vertex : {i, j}) {
