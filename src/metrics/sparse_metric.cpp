@@ -39,9 +39,13 @@ void SparseMetric::update(const TriangleMesh& mesh) {
         throw InvalidInput("SparseMetric::update: assemble() must return a #V×#V matrix");
     }
     impl_->fixed = fixed_;
-    Eigen::SparseMatrix<double> pinned = impl_->G;
-    detail::pin_fixed(pinned, impl_->fixed);
-    impl_->metric_solver.compute(pinned, "SparseMetric::update");
+    if (impl_->fixed.empty()) {  // nothing to pin: G itself, without a copy
+        impl_->metric_solver.compute(impl_->G, "SparseMetric::update");
+    } else {
+        Eigen::SparseMatrix<double> pinned = impl_->G;
+        detail::pin_fixed(pinned, impl_->fixed);
+        impl_->metric_solver.compute(pinned, "SparseMetric::update");
+    }
     impl_->ready = true;
 }
 

@@ -33,6 +33,9 @@ public:
     /// Whether the last factorization is supernodal (for tests of the choice).
     [[nodiscard]] bool supernodal() const;
 
+    /// Whether the last factorization was made in two halves (SplitCholesky; for tests).
+    [[nodiscard]] bool split() const;
+
     /// "CHOLMOD" or "Eigen SimplicialLDLT".
     [[nodiscard]] static const char* backend();
 

@@ -101,10 +101,9 @@ FlowResult area_flow(const TriangleMesh& mesh, const SmoothingOptions& options, 
 
 }  // namespace
 
-// A smoothing flow has the machine to itself: supernodal factorizations where the factor is
-// dense enough for the BLAS to pay (twice as fast as simplicial on the 48K horse), simplicial
-// below (on the 43K armadillo a step takes 58 instead of 62 ms; docs/benchmarks.md, "By flop
-// density").
+// A smoothing flow has the machine to itself: factorizations in two halves side by side, each
+// supernodal where its factor is dense enough for the BLAS to pay (twice as fast as simplicial
+// on the 48K horse), simplicial below (docs/benchmarks.md, "By flop density", "Two halves").
 constexpr Factorization kSmoothingFactorization = Factorization::ByFlopDensity;
 
 FlowResult mean_curvature_flow(const TriangleMesh& mesh, const SmoothingOptions& options) {

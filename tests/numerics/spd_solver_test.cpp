@@ -11,32 +11,10 @@
 #include <vector>
 
 #include "genflow/exceptions.h"
-#include "genflow/mesh/primitives.h"
-#include "genflow/operators/cotan_stiffness.h"
-#include "genflow/operators/mass_matrix.h"
 #include "support/test_meshes.h"
 
 namespace genflow {
 namespace {
-
-// M + K of an icosphere of `level`, repeated `copies` times along the diagonal.
-Eigen::SparseMatrix<double> sphere_h1_matrix(int level, int copies) {
-    const TriangleMesh sphere = make_icosphere(level);
-    const Eigen::SparseMatrix<double> block =
-        mass_matrix(sphere, MassType::Full) + cotan_stiffness(sphere);
-    const Eigen::Index n = block.rows();
-    std::vector<Eigen::Triplet<double>> entries;
-    for (int c = 0; c < copies; ++c) {
-        for (Eigen::Index k = 0; k < block.outerSize(); ++k) {
-            for (Eigen::SparseMatrix<double>::InnerIterator it(block, k); it; ++it) {
-                entries.emplace_back(c * n + it.row(), c * n + it.col(), it.value());
-            }
-        }
-    }
-    Eigen::SparseMatrix<double> A(copies * n, copies * n);
-    A.setFromTriplets(entries.begin(), entries.end());
-    return A;
-}
 
 // The 7-point Laplacian of a k×k×k grid plus the identity: a factor far denser in flops per
 // entry than a surface mesh's (nested fill in three dimensions).
@@ -86,16 +64,16 @@ void expect_solves(const Eigen::SparseMatrix<double>& A,
 }
 
 TEST(SpdSolver, SolvesSmallAndLargeSystemsAndRefusesIndefiniteOnes) {
-    expect_solves(sphere_h1_matrix(3, 1));  // 642 rows
-    expect_solves(sphere_h1_matrix(6, 2));  // 81,924 rows
-    expect_solves(sphere_h1_matrix(3, 1), Factorization::Supernodal);
-    expect_solves(sphere_h1_matrix(5, 1), Factorization::Supernodal);  // 10,242 rows
+    expect_solves(test::sphere_h1_matrix(3, 1));  // 642 rows
+    expect_solves(test::sphere_h1_matrix(6, 2));  // 81,924 rows
+    expect_solves(test::sphere_h1_matrix(3, 1), Factorization::Supernodal);
+    expect_solves(test::sphere_h1_matrix(5, 1), Factorization::Supernodal);  // 10,242 rows
 }
 
 // ByFlopDensity factors a sparse-filling matrix (37 flops per entry of the factor) simplicially
 // and a dense-filling one supernodally, and solves both.
 TEST(SpdSolver, ChoosesTheFactorizationByFlopDensity) {
-    const Eigen::SparseMatrix<double> surface = sphere_h1_matrix(3, 1);
+    const Eigen::SparseMatrix<double> surface = test::sphere_h1_matrix(3, 1);
     const Eigen::SparseMatrix<double> volume = grid_laplacian(24);
     expect_solves(surface, Factorization::ByFlopDensity);
     expect_solves(volume, Factorization::ByFlopDensity);
@@ -111,7 +89,7 @@ TEST(SpdSolver, ChoosesTheFactorizationByFlopDensity) {
 
 // The two factorizations of the same matrix agree to rounding.
 TEST(SpdSolver, SupernodalAndSimplicialAgree) {
-    const Eigen::SparseMatrix<double> A = sphere_h1_matrix(5, 1);
+    const Eigen::SparseMatrix<double> A = test::sphere_h1_matrix(5, 1);
     const Eigen::MatrixXd B = test::random_matrix(A.rows(), 3, 3);
     detail::SpdSolver simplicial(Factorization::BySize);
     detail::SpdSolver supernodal(Factorization::Supernodal);
@@ -126,7 +104,8 @@ TEST(SpdSolver, SupernodalAndSimplicialAgree) {
 // agree. The grid Laplacian's supernodes are wide (many columns each), the sphere's narrow.
 TEST(SpdSolver, SolvesAnyNumberOfColumnsWithASupernodalFactor) {
     const bool cholmod = std::string(detail::SpdSolver::backend()) == "CHOLMOD";
-    for (const Eigen::SparseMatrix<double>& A : {sphere_h1_matrix(5, 1), grid_laplacian(20)}) {
+    for (const Eigen::SparseMatrix<double>& A :
+         {test::sphere_h1_matrix(5, 1), grid_laplacian(20)}) {
         detail::SpdSolver solver(Factorization::Supernodal);
         solver.compute(A, "test");
         EXPECT_EQ(solver.supernodal(), cholmod);
@@ -145,10 +124,26 @@ TEST(SpdSolver, SolvesAnyNumberOfColumnsWithASupernodalFactor) {
     }
 }
 
+// ByFlopDensity factors a matrix that splits in two halves (SplitCholesky), the other modes
+// whole; both solve.
+TEST(SpdSolver, FactorsInTwoHalvesByFlopDensity) {
+    const Eigen::SparseMatrix<double> A = test::sphere_h1_matrix(6, 1);  // 40,962 rows
+    expect_solves(A, Factorization::ByFlopDensity);
+    detail::SpdSolver by_density(Factorization::ByFlopDensity);
+    detail::SpdSolver supernodal(Factorization::Supernodal);
+    by_density.compute(A, "test");
+    supernodal.compute(A, "test");
+    EXPECT_EQ(by_density.split(), std::string(detail::SpdSolver::backend()) == "CHOLMOD");
+    EXPECT_FALSE(supernodal.split());
+    const Eigen::MatrixXd B = test::random_matrix(A.rows(), 3, 8);
+    const Eigen::MatrixXd X = supernodal.solve(B);
+    EXPECT_LT((by_density.solve(B) - X).norm(), 1e-12 * X.norm());
+}
+
 // Called at the top level, the factorization holds CHOLMOD's own thread teams to one thread;
 // inside a parallel region (a matcher's flows side by side) it runs as it is: the same bits.
 TEST(SpdSolver, FactorsToTheSameBitsInsideAndOutsideAParallelRegion) {
-    const Eigen::SparseMatrix<double> A = sphere_h1_matrix(6, 2);  // supernodal: 81,924 rows
+    const Eigen::SparseMatrix<double> A = test::sphere_h1_matrix(6, 2);  // supernodal: 81,924 rows
     const Eigen::MatrixXd B = test::random_matrix(A.rows(), 3, 2);
     detail::SpdSolver top;
     top.compute(A, "test");

@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "genflow/mesh/primitives.h"
+#include "genflow/operators/cotan_stiffness.h"
+#include "genflow/operators/mass_matrix.h"
 #include "genflow/operators/mesh_size.h"
 #include "spatial/point_index.h"
 
@@ -109,6 +111,24 @@ PartModel two_part_arm(const TriangleMesh& mesh) {
     }
     model.weights = weights_from_labels(labels, 2);
     return model;
+}
+
+Eigen::SparseMatrix<double> sphere_h1_matrix(int level, int copies) {
+    const TriangleMesh sphere = make_icosphere(level);
+    const Eigen::SparseMatrix<double> block =
+        mass_matrix(sphere, MassType::Full) + cotan_stiffness(sphere);
+    const Eigen::Index n = block.rows();
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int c = 0; c < copies; ++c) {
+        for (Eigen::Index k = 0; k < block.outerSize(); ++k) {
+            for (Eigen::SparseMatrix<double>::InnerIterator it(block, k); it; ++it) {
+                entries.emplace_back(c * n + it.row(), c * n + it.col(), it.value());
+            }
+        }
+    }
+    Eigen::SparseMatrix<double> A(copies * n, copies * n);
+    A.setFromTriplets(entries.begin(), entries.end());
+    return A;
 }
 
 Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, unsigned seed) {

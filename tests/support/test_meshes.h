@@ -2,6 +2,7 @@
 // Meshes and helpers shared by the tests. Everything is generated: no data files needed.
 #pragma once
 
+#include <Eigen/SparseCore>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -25,6 +26,10 @@ TriangleMesh noisy_torus(int rings, int sides, double relative_sigma = 0.1, unsi
 /// A matrix of entries uniform in [-1, 1] drawn from its own seeded generator: the same in
 /// every test order, unlike Eigen's Random(), which draws from the process's std::rand().
 Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, unsigned seed);
+
+/// M + K (full mass matrix, cotangent stiffness) of an icosphere of `level`, `copies` of it
+/// along the diagonal: a symmetric positive definite matrix of a surface mesh's pattern.
+Eigen::SparseMatrix<double> sphere_h1_matrix(int level, int copies = 1);
 
 /// A figure: a unit sphere with a head, two arms and two legs, spikes of different lengths but
 /// for the pairs, mirror images of one another across the plane x = 0, so that a reflection is

@@ -16,7 +16,9 @@ enum class Factorization {
     /// simplicial below: the faster of the two, on either side, for a flow that has the machine
     /// to itself (at 71 flops per entry, the 43K armadillo, a simplicial factorization and solve
     /// take 40 instead of 46 ms; at 102, a 40K range scan, 72 instead of 47 ms;
-    /// docs/benchmarks.md, "By flop density").
+    /// docs/benchmarks.md, "By flop density"). Where the matrix splits at a small vertex
+    /// separator, its two halves are factored so, side by side on two threads, and the separator
+    /// densely (docs/formulas.md §10): on the 48K horse 32 instead of 46 ms.
     ByFlopDensity,
 };
 

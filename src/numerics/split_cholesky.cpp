@@ -1,0 +1,456 @@
+// SPDX-License-Identifier: MIT
+#include "numerics/split_cholesky.h"
+
+#ifdef GENFLOW_HAS_CHOLMOD
+
+#include <cholmod.h>
+
+#include <Eigen/CholmodSupport>
+#include <algorithm>
+#include <mutex>
+#include <utility>
+
+#include "numerics/factor_solves.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+// OpenBLAS's thread count, where OpenBLAS is the BLAS (weak: absent otherwise).
+extern "C" {
+void openblas_set_num_threads(int) __attribute__((weak));
+int openblas_get_num_threads() __attribute__((weak));
+}
+
+namespace genflow::detail {
+
+namespace {
+
+constexpr int kInterior = 0;   // cholmod_camd()'s constraint set of the interior rows
+constexpr int kSeparator = 1;  // … and of the separator's, eliminated after them
+constexpr int kCut = 2;        // cholmod_bisect()'s mark of a separator row
+
+// Holds OpenBLAS, where it is the BLAS, to one thread while any holder lives, and gives it back
+// its own count after the last. Two halves each calling a two-thread OpenBLAS ran 4.4 times
+// slower than one half alone (docs/benchmarks.md, "Two halves"); and the BLAS's thread count
+// changes a supernodal factor's rounding, so the halves run on one BLAS thread whether they run
+// side by side or not, for the same bits either way.
+class OneThreadBlas {
+public:
+    OneThreadBlas() {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        if (openblas_set_num_threads == nullptr || openblas_get_num_threads == nullptr) {
+            return;
+        }
+        if (holders_++ == 0) {
+            own_threads_ = openblas_get_num_threads();
+            openblas_set_num_threads(1);
+        }
+    }
+    ~OneThreadBlas() {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        if (openblas_set_num_threads == nullptr || openblas_get_num_threads == nullptr) {
+            return;
+        }
+        if (--holders_ == 0) {
+            openblas_set_num_threads(own_threads_);
+        }
+    }
+    OneThreadBlas(const OneThreadBlas&) = delete;
+    OneThreadBlas& operator=(const OneThreadBlas&) = delete;
+
+private:
+    static inline std::mutex mutex_;
+    static inline int holders_ = 0;
+    static inline int own_threads_ = 1;
+};
+
+// Runs body(h) for both halves, side by side when two threads are free and the call is not
+// inside a parallel region, else one after the other. CHOLMOD's own OpenMP teams (a fixed four
+// threads per large supernode, SpdSolver's factorize() says why they cost) then run on the
+// calling thread: inside the region of the halves or of the caller as nested, inactive regions
+// (OpenMP's default of one active level), on one thread alone in a `teams` region of one.
+template <typename Body>
+void for_both_halves(Body&& body) {
+    const OneThreadBlas hold;
+#ifdef _OPENMP
+    if (!omp_in_parallel()) {
+        if (omp_get_max_threads() >= 2) {
+#pragma omp parallel for num_threads(2) schedule(static, 1)
+            for (int h = 0; h < 2; ++h) {
+                body(h);
+            }
+            return;
+        }
+#pragma omp teams num_teams(1) thread_limit(1)
+        {
+            body(0);
+            body(1);
+        }
+        return;
+    }
+#endif
+    body(0);
+    body(1);
+}
+
+}  // namespace
+
+// One half: its rows of A (its interior, then S in the common order), the lower triangle of its
+// matrix with, per entry, the place in A's values it is copied from, and its factor.
+struct SplitCholesky::Half {
+    cholmod_common common{};
+    std::vector<int> rows;
+    int interior = 0;
+    cholmod_sparse* matrix = nullptr;
+    std::vector<Eigen::Index> source;
+    cholmod_factor* factor = nullptr;
+    // The factor's last |S| columns, L_S (lower triangular), rows and columns in the factor's
+    // order of S; separator_slot[t] is the common slot of its row t.
+    Eigen::MatrixXd last_block;
+    std::vector<int> separator_slot;
+
+    Half() {
+        cholmod_start(&common);
+        common.print = 0;  // failures are reported by the caller
+    }
+    ~Half() {
+        cholmod_free_factor(&factor, &common);
+        cholmod_free_sparse(&matrix, &common);
+        cholmod_finish(&common);
+    }
+    Half(const Half&) = delete;
+    Half& operator=(const Half&) = delete;
+
+    [[nodiscard]] int size() const { return static_cast<int>(rows.size()); }
+
+    void gather_matrix(const Eigen::SparseMatrix<double>& A, const std::vector<int>& local);
+    [[nodiscard]] bool analyze(double supernodal_switch);
+    [[nodiscard]] bool factorize(const Eigen::SparseMatrix<double>& A);
+    void read_last_block();
+
+    // z: the interior rows of columns first … first + columns − 1 of B in the factor's order
+    // (interleaved), zeros for S; then z := L⁻¹ z.
+    void forward(const Eigen::MatrixXd& B, Eigen::Index first, int columns,
+                 std::vector<double>& z) const;
+    // rhs (S's common order) += L_S q, q the S rows of z after forward().
+    void push_separator(const std::vector<double>& z, int columns, Eigen::MatrixXd& rhs) const;
+    // z's S rows := L_Sᵀ x_S, then z := L⁻ᵀ z, whose interior rows go to X's columns from `first`.
+    void backward(const Eigen::MatrixXd& x_s, std::vector<double>& z, Eigen::Index first,
+                  Eigen::MatrixXd& X) const;
+};
+
+// The lower triangle of A restricted to `rows`, renumbered by `local` (A's row → this half's,
+// −1 outside it), each column sorted.
+void SplitCholesky::Half::gather_matrix(const Eigen::SparseMatrix<double>& A,
+                                        const std::vector<int>& local) {
+    std::vector<std::pair<int, Eigen::Index>> column;  // (local row, place in A's values)
+    std::vector<int> starts{0};
+    std::vector<int> entries;
+    source.clear();
+    for (int c = 0; c < size(); ++c) {
+        column.clear();
+        const int a = rows[static_cast<std::size_t>(c)];
+        for (Eigen::Index k = A.outerIndexPtr()[a]; k < A.outerIndexPtr()[a + 1]; ++k) {
+            const int r = local[static_cast<std::size_t>(A.innerIndexPtr()[k])];
+            if (r >= c) {
+                column.emplace_back(r, k);
+            }
+        }
+        std::sort(column.begin(), column.end());
+        for (const auto& [r, k] : column) {
+            entries.push_back(r);
+            source.push_back(k);
+        }
+        starts.push_back(static_cast<int>(entries.size()));
+    }
+    const auto n = static_cast<std::size_t>(size());
+    matrix = cholmod_allocate_sparse(n, n, entries.size(), 1, 1, -1, CHOLMOD_REAL, &common);
+    std::copy(starts.begin(), starts.end(), static_cast<int*>(matrix->p));
+    std::copy(entries.begin(), entries.end(), static_cast<int*>(matrix->i));
+}
+
+// An ordering with S last (CAMD, constrained), then the symbolic factor in that order.
+bool SplitCholesky::Half::analyze(double supernodal_switch) {
+    std::vector<int> set(rows.size(), kSeparator);
+    std::fill(set.begin(), set.begin() + interior, kInterior);
+    std::vector<int> order(rows.size());
+    if (!cholmod_camd(matrix, nullptr, 0, set.data(), order.data(), &common)) {
+        return false;
+    }
+    // CAMD's order is already postordered within its constraints; CHOLMOD's own postorder
+    // could move a separator row that no interior row reaches ahead of them.
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_GIVEN;
+    common.postorder = 0;
+    common.supernodal = CHOLMOD_AUTO;
+    common.supernodal_switch = supernodal_switch;
+    common.final_asis = 0;
+    common.final_ll = 1;
+    factor = cholmod_analyze_p(matrix, order.data(), nullptr, 0, &common);
+    if (factor == nullptr) {
+        return false;
+    }
+    const auto* perm = static_cast<const int*>(factor->Perm);
+    separator_slot.clear();
+    for (int k = interior; k < size(); ++k) {
+        if (perm[k] < interior) {
+            return false;
+        }
+        separator_slot.push_back(perm[k] - interior);
+    }
+    return true;
+}
+
+bool SplitCholesky::Half::factorize(const Eigen::SparseMatrix<double>& A) {
+    auto* values = static_cast<double*>(matrix->x);
+    for (std::size_t e = 0; e < source.size(); ++e) {
+        values[e] = A.valuePtr()[source[e]];
+    }
+    const bool factored = cholmod_factorize(matrix, factor, &common) != 0 &&
+                          common.status == CHOLMOD_OK && factor->minor == factor->n;
+    if (factored) {
+        read_last_block();
+    }
+    return factored;
+}
+
+// L_S from the factor's columns interior … n − 1, simplicial or supernodal.
+void SplitCholesky::Half::read_last_block() {
+    const int s = size() - interior;
+    last_block.setZero(s, s);
+    const auto keep = [&](int row, int column, double value) {
+        last_block(row - interior, column - interior) = value;
+    };
+    if (factor->is_super == 0) {
+        const auto* start = static_cast<const int*>(factor->p);
+        const auto* count = static_cast<const int*>(factor->nz);
+        const auto* index = static_cast<const int*>(factor->i);
+        const auto* x = static_cast<const double*>(factor->x);
+        for (int j = interior; j < size(); ++j) {
+            for (int p = start[j]; p < start[j] + count[j]; ++p) {
+                keep(index[p], j, x[p]);
+            }
+        }
+        return;
+    }
+    const auto* first_column = static_cast<const int*>(factor->super);
+    const auto* row_start = static_cast<const int*>(factor->pi);
+    const auto* value_start = static_cast<const int*>(factor->px);
+    const auto* index = static_cast<const int*>(factor->s);
+    const auto* x = static_cast<const double*>(factor->x);
+    for (std::size_t t = 0; t < factor->nsuper; ++t) {
+        const int first = first_column[t];
+        const int height = row_start[t + 1] - row_start[t];
+        const int* rows_of = index + row_start[t];
+        const double* block = x + value_start[t];
+        for (int j = std::max(first, interior); j < first_column[t + 1]; ++j) {
+            for (int i = j - first; i < height; ++i) {  // on and below the diagonal
+                keep(rows_of[i], j, block[static_cast<std::ptrdiff_t>(j - first) * height + i]);
+            }
+        }
+    }
+}
+
+void SplitCholesky::Half::forward(const Eigen::MatrixXd& B, Eigen::Index first, int columns,
+                                  std::vector<double>& z) const {
+    const auto* perm = static_cast<const int*>(factor->Perm);
+    z.assign(static_cast<std::size_t>(columns) * rows.size(), 0.0);
+    for (int k = 0; k < interior; ++k) {
+        const int row = rows[static_cast<std::size_t>(perm[k])];
+        for (int c = 0; c < columns; ++c) {
+            z[static_cast<std::size_t>(columns * k + c)] = B(row, first + c);
+        }
+    }
+    lower_solve(*factor, z.data(), columns);
+}
+
+void SplitCholesky::Half::push_separator(const std::vector<double>& z, int columns,
+                                         Eigen::MatrixXd& rhs) const {
+    const double* q = z.data() + static_cast<std::ptrdiff_t>(columns) * interior;
+    for (Eigen::Index i = 0; i < last_block.rows(); ++i) {
+        for (int c = 0; c < columns; ++c) {
+            double sum = 0;
+            for (Eigen::Index j = 0; j <= i; ++j) {
+                sum += last_block(i, j) * q[columns * j + c];
+            }
+            rhs(separator_slot[static_cast<std::size_t>(i)], c) += sum;
+        }
+    }
+}
+
+void SplitCholesky::Half::backward(const Eigen::MatrixXd& x_s, std::vector<double>& z,
+                                   Eigen::Index first, Eigen::MatrixXd& X) const {
+    const auto columns = static_cast<int>(x_s.cols());
+    double* lifted = z.data() + static_cast<std::ptrdiff_t>(columns) * interior;
+    for (Eigen::Index j = 0; j < last_block.cols(); ++j) {
+        for (int c = 0; c < columns; ++c) {
+            double sum = 0;
+            for (Eigen::Index i = j; i < last_block.rows(); ++i) {
+                sum += last_block(i, j) * x_s(separator_slot[static_cast<std::size_t>(i)], c);
+            }
+            lifted[columns * j + c] = sum;
+        }
+    }
+    upper_solve(*factor, z.data(), columns);
+    const auto* perm = static_cast<const int*>(factor->Perm);
+    for (int k = 0; k < interior; ++k) {
+        const int row = rows[static_cast<std::size_t>(perm[k])];
+        for (int c = 0; c < columns; ++c) {
+            X(row, first + c) = z[static_cast<std::size_t>(columns * k + c)];
+        }
+    }
+}
+
+SplitCholesky::SplitCholesky() = default;
+SplitCholesky::~SplitCholesky() = default;
+
+bool SplitCholesky::analyze(const Eigen::SparseMatrix<double>& A, double supernodal_switch) {
+    const auto n = static_cast<std::size_t>(A.rows());
+    cholmod_common common{};
+    cholmod_start(&common);
+    common.print = 0;
+    cholmod_sparse pattern = Eigen::viewAsCholmod(A);
+    pattern.stype = 1;  // symmetric: its upper triangle is read
+    std::vector<int> part(n);
+    const auto cut = cholmod_bisect(&pattern, nullptr, 0, 1, part.data(), &common);
+    cholmod_finish(&common);
+    if (cut < 0) {
+        return false;
+    }
+    separator_.clear();
+    std::vector<int> slot(n, -1);
+    for (std::size_t r = 0; r < n; ++r) {
+        if (part[r] == kCut) {
+            slot[r] = static_cast<int>(separator_.size());
+            separator_.push_back(static_cast<int>(r));
+        }
+    }
+    for (int h = 0; h < 2; ++h) {
+        auto half = std::make_unique<Half>();
+        std::vector<int> local(n, -1);
+        for (std::size_t r = 0; r < n; ++r) {
+            if (part[r] == h) {
+                local[r] = static_cast<int>(half->rows.size());
+                half->rows.push_back(static_cast<int>(r));
+            }
+        }
+        half->interior = static_cast<int>(half->rows.size());
+        if (half->interior == 0) {
+            return false;
+        }
+        for (const int r : separator_) {
+            local[static_cast<std::size_t>(r)] = half->interior + slot[static_cast<std::size_t>(r)];
+            half->rows.push_back(r);
+        }
+        half->gather_matrix(A, local);
+        halves_[static_cast<std::size_t>(h)] = std::move(half);
+    }
+    bool analysed[2] = {false, false};
+    for_both_halves([&](int h) {
+        analysed[h] = halves_[static_cast<std::size_t>(h)]->analyze(supernodal_switch);
+    });
+    separator_entries_.clear();
+    for (const int c : separator_) {
+        for (Eigen::Index k = A.outerIndexPtr()[c]; k < A.outerIndexPtr()[c + 1]; ++k) {
+            const int r = slot[static_cast<std::size_t>(A.innerIndexPtr()[k])];
+            if (r >= 0) {
+                separator_entries_.push_back(
+                    {r, slot[static_cast<std::size_t>(c)], static_cast<int>(k)});
+            }
+        }
+    }
+    return analysed[0] && analysed[1] && pays_for_separator();
+}
+
+// The dense work on S, about s³ flops a factorization (s³/3 to factor the Schur complement,
+// 2s³/3 to multiply out both halves' L_S L_Sᵀ), runs on one thread after the halves: it must
+// stay below the smaller half's work for the halves side by side to save time. A surface mesh's
+// separator is small (89 rows of the 43K armadillo, 179 of the 48K horse), a dense matrix's not.
+bool SplitCholesky::pays_for_separator() const {
+    const double s = static_cast<double>(separator_.size());
+    return s * s * s <= std::min(halves_[0]->common.fl, halves_[1]->common.fl);
+}
+
+bool SplitCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
+    bool factored[2] = {false, false};
+    for_both_halves(
+        [&](int h) { factored[h] = halves_[static_cast<std::size_t>(h)]->factorize(A); });
+    if (!factored[0] || !factored[1]) {
+        return false;
+    }
+    assemble_schur_complement(A);
+    return schur_.info() == Eigen::Success;
+}
+
+// A_SS − Σ_i A_Si A_ii⁻¹ A_iS = Σ_i L_Si L_Siᵀ − A_SS: each half's last block L_Si is the factor
+// of its own Schur complement A_SS − A_Si A_ii⁻¹ A_iS.
+void SplitCholesky::assemble_schur_complement(const Eigen::SparseMatrix<double>& A) {
+    const auto s = static_cast<Eigen::Index>(separator_.size());
+    Eigen::MatrixXd schur = Eigen::MatrixXd::Zero(s, s);
+    for (const auto& [r, c, k] : separator_entries_) {
+        schur(r, c) = -A.valuePtr()[k];
+    }
+    for (const auto& half : halves_) {
+        const Eigen::MatrixXd product =
+            half->last_block.triangularView<Eigen::Lower>() * half->last_block.transpose();
+        for (Eigen::Index j = 0; j < s; ++j) {
+            for (Eigen::Index i = 0; i < s; ++i) {
+                schur(half->separator_slot[static_cast<std::size_t>(i)],
+                      half->separator_slot[static_cast<std::size_t>(j)]) += product(i, j);
+            }
+        }
+    }
+    schur_.compute(schur);
+}
+
+Eigen::MatrixXd SplitCholesky::solve(const Eigen::MatrixXd& B) const {
+    Eigen::MatrixXd X(B.rows(), B.cols());
+    for (Eigen::Index first = 0; first < B.cols(); first += kFactorSolveColumns) {
+        const auto columns =
+            static_cast<int>(std::min<Eigen::Index>(kFactorSolveColumns, B.cols() - first));
+        solve_columns(B, first, columns, X);
+    }
+    return X;
+}
+
+// Columns first … first + columns − 1 of X = A⁻¹ B. In each half's order, L = [L_I 0; L_SI L_S]:
+// L⁻¹ of [b_I; 0] gives [L_I⁻¹ b_I; q] with L_S q = −A_SI A_II⁻¹ b_I, so the separator's rows
+// solve (Schur) x_S = b_S + Σ L_S q; then L⁻ᵀ of [L_I⁻¹ b_I; L_Sᵀ x_S] gives [x_I; x_S].
+void SplitCholesky::solve_columns(const Eigen::MatrixXd& B, Eigen::Index first, int columns,
+                                  Eigen::MatrixXd& X) const {
+    const auto s = static_cast<Eigen::Index>(separator_.size());
+    std::array<std::vector<double>, 2> z;
+    for_both_halves([&](int h) {
+        halves_[static_cast<std::size_t>(h)]->forward(B, first, columns,
+                                                      z[static_cast<std::size_t>(h)]);
+    });
+    Eigen::MatrixXd x_s(s, columns);
+    for (Eigen::Index t = 0; t < s; ++t) {
+        x_s.row(t) = B.row(separator_[static_cast<std::size_t>(t)]).segment(first, columns);
+    }
+    for (int h = 0; h < 2; ++h) {
+        halves_[static_cast<std::size_t>(h)]->push_separator(z[static_cast<std::size_t>(h)],
+                                                             columns, x_s);
+    }
+    for (int c = 0; c < columns; ++c) {  // column by column: the bits of each alone
+        x_s.col(c) = schur_.solve(x_s.col(c));
+    }
+    for_both_halves([&](int h) {
+        halves_[static_cast<std::size_t>(h)]->backward(x_s, z[static_cast<std::size_t>(h)], first,
+                                                       X);
+    });
+    for (Eigen::Index t = 0; t < s; ++t) {
+        X.row(separator_[static_cast<std::size_t>(t)]).segment(first, columns) = x_s.row(t);
+    }
+}
+
+bool SplitCholesky::supernodal() const {
+    return std::any_of(halves_.begin(), halves_.end(), [](const std::unique_ptr<Half>& half) {
+        return half && half->factor != nullptr && half->factor->is_super != 0;
+    });
+}
+
+}  // namespace genflow::detail
+
+#endif

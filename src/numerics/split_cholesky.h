@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// A sparse Cholesky factorization in two halves, factored side by side: a vertex separator S
+// cuts the graph of A into I₁ and I₂, each half's matrix [A_ii A_iS; A_Si A_SS] is factored with
+// S eliminated last, and the Schur complement on S is assembled from the two factors' last
+// blocks and factored densely (block elimination; docs/formulas.md §10).
+#pragma once
+
+#ifdef GENFLOW_HAS_CHOLMOD
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace genflow::detail {
+
+class SplitCholesky {
+public:
+    SplitCholesky();
+    ~SplitCholesky();
+    SplitCholesky(const SplitCholesky&) = delete;
+    SplitCholesky& operator=(const SplitCholesky&) = delete;
+
+    /// Analyses the pattern of A (symmetric, both triangles stored): a separator, and each
+    /// half's ordering and symbolic factor, supernodal from `supernodal_switch` flops per entry
+    /// of its factor. False when A does not split (a side empty), when its separator is too
+    /// large to pay (its dense work above the smaller half's), or when CHOLMOD fails; the caller
+    /// then factors A whole.
+    [[nodiscard]] bool analyze(const Eigen::SparseMatrix<double>& A, double supernodal_switch);
+
+    /// Factors A, of the analysed pattern, its halves on two threads when there are two and
+    /// the call is not inside a parallel region (the same bits either way). False if A is not
+    /// positive definite.
+    [[nodiscard]] bool factorize(const Eigen::SparseMatrix<double>& A);
+
+    /// A⁻¹·B for the last factored A; each column gets the bits it gets alone.
+    [[nodiscard]] Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+
+    /// Whether either half's factor is supernodal.
+    [[nodiscard]] bool supernodal() const;
+
+    /// The rows of the separator, ascending (for tests).
+    [[nodiscard]] const std::vector<int>& separator() const { return separator_; }
+
+private:
+    struct Half;
+
+    [[nodiscard]] bool pays_for_separator() const;
+    void assemble_schur_complement(const Eigen::SparseMatrix<double>& A);
+    void solve_columns(const Eigen::MatrixXd& B, Eigen::Index first, int columns,
+                       Eigen::MatrixXd& X) const;
+
+    std::array<std::unique_ptr<Half>, 2> halves_;
+    std::vector<int> separator_;  // A's rows in S, ascending: S's common order
+    // A_SS's entries: their place in S×S (row, column) and in A's values.
+    std::vector<std::array<int, 3>> separator_entries_;
+    Eigen::LLT<Eigen::MatrixXd> schur_;  // of A_SS − Σ_i A_Si A_ii⁻¹ A_iS
+};
+
+}  // namespace genflow::detail
+
+#endif
