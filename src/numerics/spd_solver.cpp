@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "numerics/spd_solver.h"
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -126,6 +127,11 @@ struct SpdSolver::Impl {
     // The factorization in two halves, if A is analysed for it (Factorization::ByFlopDensity)
     // and splits; else `solver` holds A's factor.
     std::unique_ptr<SplitCholesky> split;
+    // Whether the split factor was analysed again with wider supernodes, and how many times
+    // the current pattern was factored and its factor solved with since the last time.
+    bool wide = false;
+    int factorizations = 0;
+    std::atomic<int> solves{0};
 #else
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
 #endif
@@ -138,6 +144,8 @@ struct SpdSolver::Impl {
                  [[maybe_unused]] Factorization factorization) {
 #ifdef GENFLOW_HAS_CHOLMOD
         split.reset();
+        wide = false;
+        factorizations = 0;
         // A flow that has the machine to itself factors in two halves side by side where A
         // splits: five fairing steps on the noisy tori of the cost curve take 0.77×, 0.79×,
         // 0.80× and 0.73× the time at 1K, 10K, 50K and 200K vertices (docs/benchmarks.md,
@@ -158,12 +166,27 @@ struct SpdSolver::Impl {
     bool factorize(const Eigen::SparseMatrix<double>& A) {
 #ifdef GENFLOW_HAS_CHOLMOD
         if (split) {
+            widen_for_one_solve();
+            ++factorizations;
+            solves = 0;
             return split->factorize(A);
         }
 #endif
         detail::factorize(solver, A);
         return solver.info() == Eigen::Success;
     }
+
+#ifdef GENFLOW_HAS_CHOLMOD
+    // A factor solved once before the next factorization (a flow's step: one factorization,
+    // one solve) is best made for its factorization's speed, one solved often (GMRES's
+    // preconditioner, a frozen metric) for its solves': so a split factor is widened when its
+    // first factorization was solved with exactly once (docs/benchmarks.md, "Two halves").
+    void widen_for_one_solve() {
+        if (factorizations == 1 && solves == 1 && !wide) {
+            wide = split->widen_supernodes();
+        }
+    }
+#endif
 
     bool same_pattern(const Eigen::SparseMatrix<double>& A) const {
         return A.rows() == rows && static_cast<std::size_t>(A.nonZeros()) == inner.size() &&
@@ -244,6 +267,14 @@ bool SpdSolver::supernodal() const {
 #endif
 }
 
+bool SpdSolver::wide_supernodes() const {
+#ifdef GENFLOW_HAS_CHOLMOD
+    return impl_->split != nullptr && impl_->wide;
+#else
+    return false;
+#endif
+}
+
 bool SpdSolver::split() const {
 #ifdef GENFLOW_HAS_CHOLMOD
     return impl_->factored && impl_->split != nullptr;
@@ -262,6 +293,7 @@ Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& B) const {
     // solution. Both it and the simplicial solve give each column the bits it gives alone.
 #ifdef GENFLOW_HAS_CHOLMOD
     if (impl_->split) {
+        ++impl_->solves;
         return impl_->split->solve(B);
     }
     const cholmod_factor* factor = impl_->solver.factor();

@@ -36,6 +36,10 @@ public:
     /// Whether the last factorization was made in two halves (SplitCholesky; for tests).
     [[nodiscard]] bool split() const;
 
+    /// Whether the factorization in two halves was analysed again with wider supernodes, as it
+    /// is when its first factor was solved with exactly once (for tests).
+    [[nodiscard]] bool wide_supernodes() const;
+
     /// "CHOLMOD" or "Eigen SimplicialLDLT".
     [[nodiscard]] static const char* backend();
 

@@ -7,6 +7,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <algorithm>
+#include <array>
 #include <mutex>
 #include <utility>
 
@@ -104,6 +105,7 @@ struct SplitCholesky::Half {
     int interior = 0;
     cholmod_sparse* matrix = nullptr;
     std::vector<Eigen::Index> source;
+    std::vector<int> order;  // CAMD's, the separator last
     cholmod_factor* factor = nullptr;
     // The factor's last |S| columns, L_S (lower triangular), rows and columns in the factor's
     // order of S; separator_slot[t] is the common slot of its row t.
@@ -126,6 +128,8 @@ struct SplitCholesky::Half {
 
     void gather_matrix(const Eigen::SparseMatrix<double>& A, const std::vector<int>& local);
     [[nodiscard]] bool analyze(double supernodal_switch);
+    [[nodiscard]] bool analyze_symbolic();
+    [[nodiscard]] bool widen_supernodes();
     [[nodiscard]] bool factorize(const Eigen::SparseMatrix<double>& A);
     void read_last_block();
 
@@ -174,7 +178,7 @@ void SplitCholesky::Half::gather_matrix(const Eigen::SparseMatrix<double>& A,
 bool SplitCholesky::Half::analyze(double supernodal_switch) {
     std::vector<int> set(rows.size(), kSeparator);
     std::fill(set.begin(), set.begin() + interior, kInterior);
-    std::vector<int> order(rows.size());
+    order.resize(rows.size());
     if (!cholmod_camd(matrix, nullptr, 0, set.data(), order.data(), &common)) {
         return false;
     }
@@ -187,19 +191,38 @@ bool SplitCholesky::Half::analyze(double supernodal_switch) {
     common.supernodal_switch = supernodal_switch;
     common.final_asis = 0;
     common.final_ll = 1;
-    factor = cholmod_analyze_p(matrix, order.data(), nullptr, 0, &common);
-    if (factor == nullptr) {
+    return analyze_symbolic();
+}
+
+// The symbolic factor in `order`, replacing the one before if it succeeds.
+bool SplitCholesky::Half::analyze_symbolic() {
+    cholmod_factor* analysed = cholmod_analyze_p(matrix, order.data(), nullptr, 0, &common);
+    if (analysed == nullptr) {
         return false;
     }
-    const auto* perm = static_cast<const int*>(factor->Perm);
-    separator_slot.clear();
+    const auto* perm = static_cast<const int*>(analysed->Perm);
+    std::vector<int> slots;
     for (int k = interior; k < size(); ++k) {
         if (perm[k] < interior) {
+            cholmod_free_factor(&analysed, &common);
             return false;
         }
-        separator_slot.push_back(perm[k] - interior);
+        slots.push_back(perm[k] - interior);
     }
+    cholmod_free_factor(&factor, &common);
+    factor = analysed;
+    separator_slot = std::move(slots);
     return true;
+}
+
+// Twice CHOLMOD's column limits of relaxed amalgamation (its `nrelax`, 4, 16 and 48 columns):
+// on the horse's halves a factorization 31.5–33.1 → 25.3–25.8 ms, a three-column solve 4.4–4.6
+// → 6.8–7.0 ms; four times made the factorization no faster and the solves slower
+// (docs/benchmarks.md, "Two halves").
+bool SplitCholesky::Half::widen_supernodes() {
+    constexpr std::array<std::size_t, 3> kWideRelaxation{8, 32, 96};
+    std::copy(kWideRelaxation.begin(), kWideRelaxation.end(), common.nrelax);
+    return analyze_symbolic();
 }
 
 bool SplitCholesky::Half::factorize(const Eigen::SparseMatrix<double>& A) {
@@ -370,6 +393,13 @@ bool SplitCholesky::analyze(const Eigen::SparseMatrix<double>& A, double superno
 bool SplitCholesky::pays_for_separator() const {
     const double s = static_cast<double>(separator_.size());
     return s * s * s <= std::min(halves_[0]->common.fl, halves_[1]->common.fl);
+}
+
+bool SplitCholesky::widen_supernodes() {
+    bool widened[2] = {false, false};
+    for_both_halves(
+        [&](int h) { widened[h] = halves_[static_cast<std::size_t>(h)]->widen_supernodes(); });
+    return widened[0] && widened[1];
 }
 
 bool SplitCholesky::factorize(const Eigen::SparseMatrix<double>& A) {

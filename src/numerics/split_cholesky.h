@@ -35,6 +35,11 @@ public:
     /// positive definite.
     [[nodiscard]] bool factorize(const Eigen::SparseMatrix<double>& A);
 
+    /// Analyses both halves again with wider supernodes (CHOLMOD's relaxed amalgamation
+    /// allowed twice its columns), for a factor solved once: its factorization faster, its
+    /// solves slower. False, the analysis kept, if CHOLMOD fails; A must be factored again.
+    [[nodiscard]] bool widen_supernodes();
+
     /// A⁻¹·B for the last factored A; each column gets the bits it gets alone.
     [[nodiscard]] Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 

@@ -140,6 +140,29 @@ TEST(SpdSolver, FactorsInTwoHalvesByFlopDensity) {
     EXPECT_LT((by_density.solve(B) - X).norm(), 1e-12 * X.norm());
 }
 
+// A factor in two halves solved once before the next factorization (a flow's step) is
+// analysed again with wider supernodes; one solved more often (a preconditioner) is not. Both
+// solve, and neither needs another separator.
+TEST(SpdSolver, WidensTheSupernodesOfAFactorSolvedOnceAFactorization) {
+    const bool cholmod = std::string(detail::SpdSolver::backend()) == "CHOLMOD";
+    const Eigen::SparseMatrix<double> A = test::sphere_h1_matrix(5, 1);
+    const Eigen::MatrixXd B = test::random_matrix(A.rows(), 3, 11);
+    detail::SpdSolver once(Factorization::ByFlopDensity);
+    detail::SpdSolver often(Factorization::ByFlopDensity);
+    for (int step = 1; step <= 3; ++step) {
+        const Eigen::SparseMatrix<double> scaled = step * A;
+        once.compute(scaled, "test");
+        often.compute(scaled, "test");
+        EXPECT_LT((scaled * once.solve(B) - B).norm(), 1e-12 * B.norm()) << step;
+        for (int k = 0; k < 2; ++k) {
+            EXPECT_LT((scaled * often.solve(B) - B).norm(), 1e-12 * B.norm()) << step;
+        }
+        EXPECT_EQ(once.wide_supernodes(), cholmod && step > 1) << step;
+        EXPECT_FALSE(often.wide_supernodes()) << step;
+    }
+    EXPECT_EQ(once.analyses(), 1);
+}
+
 // Called at the top level, the factorization holds CHOLMOD's own thread teams to one thread;
 // inside a parallel region (a matcher's flows side by side) it runs as it is: the same bits.
 TEST(SpdSolver, FactorsToTheSameBitsInsideAndOutsideAParallelRegion) {

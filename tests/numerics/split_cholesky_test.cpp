@@ -76,6 +76,21 @@ TEST(SplitCholesky, RefactorsAMatrixOfTheSamePattern) {
     EXPECT_LT((2 * split.solve(B) - X).norm(), 1e-12 * X.norm());
 }
 
+// Wider supernodes change how the factor is stored, not what it solves.
+TEST(SplitCholesky, SolvesAsBeforeWithWiderSupernodes) {
+    const Eigen::SparseMatrix<double> A = test::sphere_h1_matrix(5);
+    const Eigen::MatrixXd B = test::random_matrix(A.rows(), 3, 12);
+    detail::SplitCholesky split;
+    ASSERT_TRUE(split.analyze(A, 80));
+    ASSERT_TRUE(split.factorize(A));
+    const Eigen::MatrixXd narrow = split.solve(B);
+    ASSERT_TRUE(split.widen_supernodes());
+    ASSERT_TRUE(split.factorize(A));
+    const Eigen::MatrixXd wide = split.solve(B);
+    EXPECT_LT((A * wide - B).norm(), 1e-12 * B.norm());
+    EXPECT_LT((wide - narrow).norm(), 1e-12 * narrow.norm());
+}
+
 // On a path, with d on the diagonal at the separator and 2 elsewhere, each half's Schur
 // complement on the separator is d − (1 − 1/(k+1)) and the whole's d − 2(1 − 1/(k+1)) for halves
 // of k vertices: at d = 1.5 both halves are positive definite and A is not.
