@@ -9,59 +9,6 @@ namespace genflow::detail {
 
 namespace {
 
-// A supernodal factor's arrays. Supernode s holds the columns first_column[s] … first_column[s
-// + 1] − 1; its rows are rows[row_start[s] …], the first of them its own columns in order, and
-// its values, from values[value_start[s]], are column-major with one entry per row.
-struct Supernodes {
-    int count;
-    const int* first_column;
-    const int* row_start;
-    const int* value_start;
-    const int* rows;
-    const double* values;
-
-    explicit Supernodes(const cholmod_factor& factor)
-        : count(static_cast<int>(factor.nsuper)),
-          first_column(static_cast<const int*>(factor.super)),
-          row_start(static_cast<const int*>(factor.pi)),
-          value_start(static_cast<const int*>(factor.px)),
-          rows(static_cast<const int*>(factor.s)),
-          values(static_cast<const double*>(factor.x)) {}
-};
-
-// Supernode s of a factor: its first column, how many columns and rows, the rows' indices and
-// its column-major values.
-struct Supernode {
-    int first;
-    int width;
-    int height;
-    const int* rows;
-    const double* block;
-
-    Supernode(const Supernodes& L, int s)
-        : first(L.first_column[s]),
-          width(L.first_column[s + 1] - first),
-          height(L.row_start[s + 1] - L.row_start[s]),
-          rows(L.rows + L.row_start[s]),
-          block(L.values + L.value_start[s]) {}
-};
-
-// A simplicial factor's arrays: column j has count[j] entries from start[j], the diagonal first.
-struct SimplicialColumns {
-    int n;
-    const int* start;
-    const int* count;
-    const int* rows;
-    const double* values;
-
-    explicit SimplicialColumns(const cholmod_factor& factor)
-        : n(static_cast<int>(factor.n)),
-          start(static_cast<const int*>(factor.p)),
-          count(static_cast<const int*>(factor.nz)),
-          rows(static_cast<const int*>(factor.i)),
-          values(static_cast<const double*>(factor.x)) {}
-};
-
 // Column j of L, once its own entry has divided row j, subtracts its multiples from the rows
 // below it (`rows`, `entries`: the column below the diagonal): L is read once, in the order it
 // is stored.

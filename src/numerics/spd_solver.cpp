@@ -269,7 +269,7 @@ bool SpdSolver::supernodal() const {
 
 bool SpdSolver::wide_supernodes() const {
 #ifdef GENFLOW_HAS_CHOLMOD
-    return impl_->split != nullptr && impl_->wide;
+    return impl_->wide;  // reset with the split at every analysis
 #else
     return false;
 #endif

@@ -40,7 +40,7 @@ class OneThreadBlas {
 public:
     OneThreadBlas() {
         const std::lock_guard<std::mutex> lock(mutex_);
-        if (openblas_set_num_threads == nullptr || openblas_get_num_threads == nullptr) {
+        if (!is_openblas()) {
             return;
         }
         if (holders_++ == 0) {
@@ -50,7 +50,7 @@ public:
     }
     ~OneThreadBlas() {
         const std::lock_guard<std::mutex> lock(mutex_);
-        if (openblas_set_num_threads == nullptr || openblas_get_num_threads == nullptr) {
+        if (!is_openblas()) {
             return;
         }
         if (--holders_ == 0) {
@@ -61,6 +61,10 @@ public:
     OneThreadBlas& operator=(const OneThreadBlas&) = delete;
 
 private:
+    static bool is_openblas() {
+        return openblas_set_num_threads != nullptr && openblas_get_num_threads != nullptr;
+    }
+
     static inline std::mutex mutex_;
     static inline int holders_ = 0;
     static inline int own_threads_ = 1;
@@ -238,41 +242,13 @@ bool SplitCholesky::Half::factorize(const Eigen::SparseMatrix<double>& A) {
     return factored;
 }
 
-// L_S from the factor's columns interior … n − 1, simplicial or supernodal.
+// L_S from the factor's columns interior … n − 1.
 void SplitCholesky::Half::read_last_block() {
     const int s = size() - interior;
     last_block.setZero(s, s);
-    const auto keep = [&](int row, int column, double value) {
+    for_each_lower_entry(*factor, interior, [&](int row, int column, double value) {
         last_block(row - interior, column - interior) = value;
-    };
-    if (factor->is_super == 0) {
-        const auto* start = static_cast<const int*>(factor->p);
-        const auto* count = static_cast<const int*>(factor->nz);
-        const auto* index = static_cast<const int*>(factor->i);
-        const auto* x = static_cast<const double*>(factor->x);
-        for (int j = interior; j < size(); ++j) {
-            for (int p = start[j]; p < start[j] + count[j]; ++p) {
-                keep(index[p], j, x[p]);
-            }
-        }
-        return;
-    }
-    const auto* first_column = static_cast<const int*>(factor->super);
-    const auto* row_start = static_cast<const int*>(factor->pi);
-    const auto* value_start = static_cast<const int*>(factor->px);
-    const auto* index = static_cast<const int*>(factor->s);
-    const auto* x = static_cast<const double*>(factor->x);
-    for (std::size_t t = 0; t < factor->nsuper; ++t) {
-        const int first = first_column[t];
-        const int height = row_start[t + 1] - row_start[t];
-        const int* rows_of = index + row_start[t];
-        const double* block = x + value_start[t];
-        for (int j = std::max(first, interior); j < first_column[t + 1]; ++j) {
-            for (int i = j - first; i < height; ++i) {  // on and below the diagonal
-                keep(rows_of[i], j, block[static_cast<std::ptrdiff_t>(j - first) * height + i]);
-            }
-        }
-    }
+    });
 }
 
 void SplitCholesky::Half::forward(const Eigen::MatrixXd& B, Eigen::Index first, int columns,
