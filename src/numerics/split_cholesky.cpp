@@ -101,15 +101,20 @@ void for_both_halves(Body&& body) {
 
 }  // namespace
 
-// One half: its rows of A (its interior, then S in the common order), the lower triangle of its
-// matrix with, per entry, the place in A's values it is copied from, and its factor.
+// One half: its rows of A (its interior, then S in the common order), its matrix in the order of
+// its factor, with, per entry, the place in A's values it is copied from, and its factor.
 struct SplitCholesky::Half {
     cholmod_common common{};
     std::vector<int> rows;
     int interior = 0;
+    // The lower triangle of the half's matrix in its rows' order, each entry's value its place
+    // in A's values (exact in a double).
+    cholmod_sparse* places = nullptr;
+    std::vector<int> order;  // CAMD's, the separator last: the factor's row k is rows[order[k]]
+    // The half's matrix as cholmod_factorize() hands it to the numeric factorization (see
+    // arrange()), and per entry the place in A's values.
     cholmod_sparse* matrix = nullptr;
     std::vector<Eigen::Index> source;
-    std::vector<int> order;  // CAMD's, the separator last
     cholmod_factor* factor = nullptr;
     // The factor's last |S| columns, L_S (lower triangular), rows and columns in the factor's
     // order of S; separator_slot[t] is the common slot of its row t.
@@ -123,6 +128,7 @@ struct SplitCholesky::Half {
     ~Half() {
         cholmod_free_factor(&factor, &common);
         cholmod_free_sparse(&matrix, &common);
+        cholmod_free_sparse(&places, &common);
         cholmod_finish(&common);
     }
     Half(const Half&) = delete;
@@ -130,9 +136,10 @@ struct SplitCholesky::Half {
 
     [[nodiscard]] int size() const { return static_cast<int>(rows.size()); }
 
-    void gather_matrix(const Eigen::SparseMatrix<double>& A, const std::vector<int>& local);
+    void gather_places(const Eigen::SparseMatrix<double>& A, const std::vector<int>& local);
     [[nodiscard]] bool analyze(double supernodal_switch);
     [[nodiscard]] bool analyze_symbolic();
+    [[nodiscard]] bool arrange(bool supernodal);
     [[nodiscard]] bool widen_supernodes();
     [[nodiscard]] bool factorize(const Eigen::SparseMatrix<double>& A);
     void read_last_block();
@@ -148,14 +155,14 @@ struct SplitCholesky::Half {
                   Eigen::MatrixXd& X) const;
 };
 
-// The lower triangle of A restricted to `rows`, renumbered by `local` (A's row → this half's,
-// −1 outside it), each column sorted.
-void SplitCholesky::Half::gather_matrix(const Eigen::SparseMatrix<double>& A,
+// `places`: the lower triangle of A restricted to `rows`, renumbered by `local` (A's row → this
+// half's, −1 outside it), each column sorted.
+void SplitCholesky::Half::gather_places(const Eigen::SparseMatrix<double>& A,
                                         const std::vector<int>& local) {
     std::vector<std::pair<int, Eigen::Index>> column;  // (local row, place in A's values)
     std::vector<int> starts{0};
     std::vector<int> entries;
-    source.clear();
+    std::vector<double> values;
     for (int c = 0; c < size(); ++c) {
         column.clear();
         const int a = rows[static_cast<std::size_t>(c)];
@@ -168,54 +175,83 @@ void SplitCholesky::Half::gather_matrix(const Eigen::SparseMatrix<double>& A,
         std::sort(column.begin(), column.end());
         for (const auto& [r, k] : column) {
             entries.push_back(r);
-            source.push_back(k);
+            values.push_back(static_cast<double>(k));
         }
         starts.push_back(static_cast<int>(entries.size()));
     }
     const auto n = static_cast<std::size_t>(size());
-    matrix = cholmod_allocate_sparse(n, n, entries.size(), 1, 1, -1, CHOLMOD_REAL, &common);
-    std::copy(starts.begin(), starts.end(), static_cast<int*>(matrix->p));
-    std::copy(entries.begin(), entries.end(), static_cast<int*>(matrix->i));
+    places = cholmod_allocate_sparse(n, n, entries.size(), 1, 1, -1, CHOLMOD_REAL, &common);
+    std::copy(starts.begin(), starts.end(), static_cast<int*>(places->p));
+    std::copy(entries.begin(), entries.end(), static_cast<int*>(places->i));
+    std::copy(values.begin(), values.end(), static_cast<double*>(places->x));
 }
 
-// An ordering with S last (CAMD, constrained), then the symbolic factor in that order.
+// An ordering with S last (CAMD, constrained), then the symbolic factor of the matrix in that
+// order.
 bool SplitCholesky::Half::analyze(double supernodal_switch) {
     std::vector<int> set(rows.size(), kSeparator);
     std::fill(set.begin(), set.begin() + interior, kInterior);
     order.resize(rows.size());
-    if (!cholmod_camd(matrix, nullptr, 0, set.data(), order.data(), &common)) {
+    if (!cholmod_camd(places, nullptr, 0, set.data(), order.data(), &common)) {
         return false;
     }
-    // CAMD's order is already postordered within its constraints; CHOLMOD's own postorder
-    // could move a separator row that no interior row reaches ahead of them.
+    separator_slot.clear();
+    for (int k = interior; k < size(); ++k) {
+        if (order[static_cast<std::size_t>(k)] < interior) {
+            return false;
+        }
+        separator_slot.push_back(order[static_cast<std::size_t>(k)] - interior);
+    }
+    // The matrix is put in CAMD's order, which is postordered within its constraints; CHOLMOD's
+    // own postorder could move a separator row that no interior row reaches ahead of them.
     common.nmethods = 1;
-    common.method[0].ordering = CHOLMOD_GIVEN;
+    common.method[0].ordering = CHOLMOD_NATURAL;
     common.postorder = 0;
     common.supernodal = CHOLMOD_AUTO;
     common.supernodal_switch = supernodal_switch;
     common.final_asis = 0;
     common.final_ll = 1;
-    return analyze_symbolic();
+    return arrange(true) && analyze_symbolic();
 }
 
-// The symbolic factor in `order`, replacing the one before if it succeeds.
+// The symbolic factor of `matrix`, replacing the one before if it succeeds; then the matrix
+// arranged for its kind.
 bool SplitCholesky::Half::analyze_symbolic() {
-    cholmod_factor* analysed = cholmod_analyze_p(matrix, order.data(), nullptr, 0, &common);
+    cholmod_factor* analysed = cholmod_analyze(matrix, &common);
     if (analysed == nullptr) {
         return false;
     }
-    const auto* perm = static_cast<const int*>(analysed->Perm);
-    std::vector<int> slots;
-    for (int k = interior; k < size(); ++k) {
-        if (perm[k] < interior) {
-            cholmod_free_factor(&analysed, &common);
-            return false;
-        }
-        slots.push_back(perm[k] - interior);
-    }
     cholmod_free_factor(&factor, &common);
     factor = analysed;
-    separator_slot = std::move(slots);
+    return arrange(factor->is_super != 0);
+}
+
+// `matrix` as cholmod_factorize() would arrange the half's lower triangle in `order` before its
+// numeric factorization: tril(PAPᵀ) for a supernodal factor, triu(PAPᵀ) for a simplicial one,
+// each made by CHOLMOD's own transposes (once here, with the entries' places as values) so that
+// the factorization, given the factor in its natural order, reads it as it is and rounds as
+// before. That spares two transposes a factorization (docs/benchmarks.md, "Two halves").
+bool SplitCholesky::Half::arrange(bool supernodal) {
+    if (matrix != nullptr && (matrix->stype < 0) == supernodal) {
+        return true;
+    }
+    cholmod_sparse* upper = cholmod_ptranspose(places, 2, order.data(), nullptr, 0, &common);
+    cholmod_sparse* arranged = supernodal && upper != nullptr
+                                   ? cholmod_ptranspose(upper, 2, nullptr, nullptr, 0, &common)
+                                   : upper;
+    if (arranged != upper) {
+        cholmod_free_sparse(&upper, &common);
+    }
+    if (arranged == nullptr) {
+        return false;
+    }
+    cholmod_free_sparse(&matrix, &common);
+    matrix = arranged;
+    const auto* place = static_cast<const double*>(matrix->x);
+    source.resize(static_cast<std::size_t>(cholmod_nnz(matrix, &common)));
+    for (std::size_t e = 0; e < source.size(); ++e) {
+        source[e] = static_cast<Eigen::Index>(place[e]);
+    }
     return true;
 }
 
@@ -253,10 +289,9 @@ void SplitCholesky::Half::read_last_block() {
 
 void SplitCholesky::Half::forward(const Eigen::MatrixXd& B, Eigen::Index first, int columns,
                                   std::vector<double>& z) const {
-    const auto* perm = static_cast<const int*>(factor->Perm);
     z.assign(static_cast<std::size_t>(columns) * rows.size(), 0.0);
     for (int k = 0; k < interior; ++k) {
-        const int row = rows[static_cast<std::size_t>(perm[k])];
+        const int row = rows[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
         for (int c = 0; c < columns; ++c) {
             z[static_cast<std::size_t>(columns * k + c)] = B(row, first + c);
         }
@@ -292,9 +327,8 @@ void SplitCholesky::Half::backward(const Eigen::MatrixXd& x_s, std::vector<doubl
         }
     }
     upper_solve(*factor, z.data(), columns);
-    const auto* perm = static_cast<const int*>(factor->Perm);
     for (int k = 0; k < interior; ++k) {
-        const int row = rows[static_cast<std::size_t>(perm[k])];
+        const int row = rows[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
         for (int c = 0; c < columns; ++c) {
             X(row, first + c) = z[static_cast<std::size_t>(columns * k + c)];
         }
@@ -342,7 +376,7 @@ bool SplitCholesky::analyze(const Eigen::SparseMatrix<double>& A, double superno
             local[static_cast<std::size_t>(r)] = half->interior + slot[static_cast<std::size_t>(r)];
             half->rows.push_back(r);
         }
-        half->gather_matrix(A, local);
+        half->gather_places(A, local);
         halves_[static_cast<std::size_t>(h)] = std::move(half);
     }
     bool analysed[2] = {false, false};

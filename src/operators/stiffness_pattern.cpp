@@ -2,6 +2,8 @@
 #include "operators/stiffness_pattern.h"
 
 #include <algorithm>
+#include <numeric>
+#include <utility>
 
 #include "genflow/exceptions.h"
 #include "operators/cotan_entries.h"
@@ -11,47 +13,82 @@ namespace genflow::detail {
 
 namespace {
 
-// Per vertex, its neighbours through the faces' edges and itself, sorted and without repeats:
-// the rows of its column in K + D. Returned as column starts and rows, as in a compressed
-// column-major matrix.
-void columns_of_faces(const Eigen::MatrixX3i& faces, Eigen::Index vertices,
-                      std::vector<int>& starts, std::vector<int>& rows) {
-    std::vector<int> count(static_cast<std::size_t>(vertices) + 1, 1);  // the diagonal
-    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-        for (int k = 0; k < 3; ++k) {
-            count[static_cast<std::size_t>(faces(f, k))] += 2;  // the edges on either side
+// The off-diagonal entries the faces put in each column of K: per corner k of face f, with
+// (i, j) the edge opposite it, row i of column j and row j of column i, which are edge slots
+// 2(3f + k) and 2(3f + k) + 1. Bucketed by column (counting sort): `first` the column starts,
+// `rows` and `edge_slots` the entries.
+struct ColumnEntries {
+    std::vector<int> first;
+    std::vector<int> rows;
+    std::vector<int> edge_slots;
+
+    ColumnEntries(const Eigen::MatrixX3i& faces, Eigen::Index vertices)
+        : first(static_cast<std::size_t>(vertices) + 1, 0),
+          rows(static_cast<std::size_t>(6 * faces.rows())),
+          edge_slots(rows.size()) {
+        for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+            for (int k = 0; k < 3; ++k) {
+                first[static_cast<std::size_t>(faces(f, k)) + 1] += 2;
+            }
+        }
+        std::partial_sum(first.begin(), first.end(), first.begin());
+        std::vector<int> end(first.begin(), first.end() - 1);
+        const auto add = [&](int column, int row, Eigen::Index edge_slot) {
+            const auto at = static_cast<std::size_t>(end[static_cast<std::size_t>(column)]++);
+            rows[at] = row;
+            edge_slots[at] = static_cast<int>(edge_slot);
+        };
+        for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+            for (int k = 0; k < 3; ++k) {
+                const auto [i, j] = opposite_edge(faces, f, k);
+                add(j, i, 2 * (3 * f + k));
+                add(i, j, 2 * (3 * f + k) + 1);
+            }
         }
     }
-    std::vector<int> first(static_cast<std::size_t>(vertices) + 1, 0);
-    for (Eigen::Index v = 0; v < vertices; ++v) {
-        first[static_cast<std::size_t>(v) + 1] =
-            first[static_cast<std::size_t>(v)] + count[static_cast<std::size_t>(v)];
-    }
-    std::vector<int> candidates(static_cast<std::size_t>(first.back()));
-    std::vector<int> end(first.begin(), first.end() - 1);
-    const auto add = [&](int column, int row) {
-        candidates[static_cast<std::size_t>(end[static_cast<std::size_t>(column)]++)] = row;
-    };
-    for (Eigen::Index v = 0; v < vertices; ++v) {
-        add(static_cast<int>(v), static_cast<int>(v));
-    }
-    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-        for (int k = 0; k < 3; ++k) {
-            add(faces(f, k), faces(f, (k + 1) % 3));
-            add(faces(f, k), faces(f, (k + 2) % 3));
+};
+
+// The compressed columns of K + D (each column's rows sorted, without repeats) and the slots of
+// the diagonal and of the faces' entries in them, each read from a table of its column's rows
+// (a binary search per entry was most of the time).
+struct Columns {
+    std::vector<int> starts{0};
+    std::vector<int> rows;
+    std::vector<int> diagonal_slot;
+    std::vector<int> edge_slot;
+
+    Columns(const ColumnEntries& entries, Eigen::Index vertices)
+        : diagonal_slot(static_cast<std::size_t>(vertices)), edge_slot(entries.rows.size()) {
+        rows.reserve(entries.rows.size() / 2 + static_cast<std::size_t>(vertices));
+        std::vector<int> slot_of_row(static_cast<std::size_t>(vertices));
+        std::vector<int> column_seen(static_cast<std::size_t>(vertices), -1);  // per row
+        std::vector<int> column;
+        for (int v = 0; v < static_cast<int>(vertices); ++v) {
+            const auto begin = static_cast<std::size_t>(entries.first[static_cast<std::size_t>(v)]);
+            const auto end =
+                static_cast<std::size_t>(entries.first[static_cast<std::size_t>(v) + 1]);
+            column.assign(1, v);
+            column_seen[static_cast<std::size_t>(v)] = v;
+            for (std::size_t e = begin; e < end; ++e) {  // an interior edge comes twice
+                const int row = entries.rows[e];
+                if (std::exchange(column_seen[static_cast<std::size_t>(row)], v) != v) {
+                    column.push_back(row);
+                }
+            }
+            std::sort(column.begin(), column.end());
+            for (const int row : column) {
+                slot_of_row[static_cast<std::size_t>(row)] = static_cast<int>(rows.size());
+                rows.push_back(row);
+            }
+            starts.push_back(static_cast<int>(rows.size()));
+            diagonal_slot[static_cast<std::size_t>(v)] = slot_of_row[static_cast<std::size_t>(v)];
+            for (std::size_t e = begin; e < end; ++e) {
+                edge_slot[static_cast<std::size_t>(entries.edge_slots[e])] =
+                    slot_of_row[static_cast<std::size_t>(entries.rows[e])];
+            }
         }
     }
-    starts.assign(static_cast<std::size_t>(vertices) + 1, 0);
-    rows.clear();
-    rows.reserve(candidates.size());
-    for (Eigen::Index v = 0; v < vertices; ++v) {
-        const auto begin = candidates.begin() + first[static_cast<std::size_t>(v)];
-        const auto stop = candidates.begin() + end[static_cast<std::size_t>(v)];
-        std::sort(begin, stop);
-        rows.insert(rows.end(), begin, std::unique(begin, stop));
-        starts[static_cast<std::size_t>(v) + 1] = static_cast<int>(rows.size());
-    }
-}
+};
 
 }  // namespace
 
@@ -60,45 +97,26 @@ StiffnessPattern::StiffnessPattern(const TriangleMesh& mesh)
     // The pattern setFromTriplets() gives K's entries and the diagonal, built per column from
     // the faces directly (sorting 12 triplets a face cost as much as a fairing step's
     // assembly).
-    std::vector<int> starts;
-    std::vector<int> rows;
-    columns_of_faces(mesh.F, vertices_, starts, rows);
+    const ColumnEntries entries(mesh.F, vertices_);
+    Columns columns(entries, vertices_);
+    const std::vector<int>& rows = columns.rows;
+    diagonal_slot_ = std::move(columns.diagonal_slot);
+    edge_slot_ = std::move(columns.edge_slot);
+    const std::vector<int>& starts = columns.starts;
     pattern_.resize(vertices_, vertices_);
     pattern_.resizeNonZeros(static_cast<Eigen::Index>(rows.size()));
     std::copy(starts.begin(), starts.end(), pattern_.outerIndexPtr());
     std::copy(rows.begin(), rows.end(), pattern_.innerIndexPtr());
     std::fill_n(pattern_.valuePtr(), rows.size(), -0.0);
 
-    // Rows are sorted within each column.
-    const auto slot_of = [&](int row, int column) {
-        const int* begin = rows.data() + starts[static_cast<std::size_t>(column)];
-        const int* stop = rows.data() + starts[static_cast<std::size_t>(column) + 1];
-        return static_cast<int>(std::lower_bound(begin, stop, row) - rows.data());
-    };
-    diagonal_slot_.resize(static_cast<std::size_t>(vertices_));
-    for (Eigen::Index i = 0; i < vertices_; ++i) {
-        diagonal_slot_[static_cast<std::size_t>(i)] =
-            slot_of(static_cast<int>(i), static_cast<int>(i));
-    }
-    // Of the four entries per corner, (i, j) and (j, i) need their slots; (i, i) and (j, j)
-    // are the diagonal's.
-    edge_slot_.clear();
-    edge_slot_.reserve(static_cast<std::size_t>(6 * mesh.F.rows()));
+    // A diagonal entry has a stiffness part where its vertex is on a face (on two of the
+    // face's opposite edges).
     slot_kind_.assign(rows.size(), SlotKind::OffDiagonal);
-    for (const int slot : diagonal_slot_) {
-        slot_kind_[static_cast<std::size_t>(slot)] = SlotKind::Diagonal;
-    }
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-        for (int k = 0; k < 3; ++k) {
-            const auto [i, j] = opposite_edge(mesh.F, f, k);
-            edge_slot_.push_back(slot_of(i, j));
-            edge_slot_.push_back(slot_of(j, i));
-            for (const int vertex : {i, j}) {
-                slot_kind_[static_cast<std::size_t>(
-                    diagonal_slot_[static_cast<std::size_t>(vertex)])] =
-                    SlotKind::DiagonalWithStiffness;
-            }
-        }
+    for (Eigen::Index v = 0; v < vertices_; ++v) {
+        const bool on_a_face = entries.first[static_cast<std::size_t>(v) + 1] >
+                               entries.first[static_cast<std::size_t>(v)];
+        slot_kind_[static_cast<std::size_t>(diagonal_slot_[static_cast<std::size_t>(v)])] =
+            on_a_face ? SlotKind::DiagonalWithStiffness : SlotKind::Diagonal;
     }
 }
 

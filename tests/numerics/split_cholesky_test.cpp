@@ -36,10 +36,17 @@ Eigen::SparseMatrix<double> path_matrix(int n, double diagonal) {
     return A;
 }
 
-void expect_solves_as_the_whole_factor(const Eigen::SparseMatrix<double>& A) {
+// Flop densities at which both halves' factors are supernodal, and simplicial: each kind reads
+// its matrix in a triangle of its own.
+constexpr double kAlwaysSupernodal = 0;
+constexpr double kNeverSupernodal = 1e300;
+
+void expect_solves_as_the_whole_factor(const Eigen::SparseMatrix<double>& A,
+                                       double supernodal_switch) {
     detail::SplitCholesky split;
-    ASSERT_TRUE(split.analyze(A, 80));
+    ASSERT_TRUE(split.analyze(A, supernodal_switch));
     ASSERT_TRUE(split.factorize(A));
+    EXPECT_EQ(split.supernodal(), supernodal_switch == kAlwaysSupernodal);
     detail::SpdSolver whole(Factorization::Supernodal);
     whole.compute(A, "test");
     const Eigen::MatrixXd B = test::random_matrix(A.rows(), 6, 5);
@@ -57,9 +64,12 @@ TEST(SplitCholesky, SolvesAsTheWholeFactorDoes) {
     ASSERT_TRUE(split.analyze(sphere, 80));
     EXPECT_GT(split.separator().size(), 10U);  // a cut around the sphere
     EXPECT_LT(split.separator().size(), 0.05 * static_cast<double>(sphere.rows()));
-    expect_solves_as_the_whole_factor(sphere);
-    expect_solves_as_the_whole_factor(test::sphere_h1_matrix(4, 2));  // no separator: two spheres
-    expect_solves_as_the_whole_factor(path_matrix(5000, 2.5));
+    for (const double supernodal_switch : {kAlwaysSupernodal, kNeverSupernodal}) {
+        expect_solves_as_the_whole_factor(sphere, supernodal_switch);
+        // No separator: two spheres.
+        expect_solves_as_the_whole_factor(test::sphere_h1_matrix(4, 2), supernodal_switch);
+        expect_solves_as_the_whole_factor(path_matrix(5000, 2.5), supernodal_switch);
+    }
 }
 
 // A new matrix of the analysed pattern factors without a new analysis; so does a matrix of

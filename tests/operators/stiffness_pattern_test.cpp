@@ -43,8 +43,9 @@ Eigen::SparseMatrix<double> eigen_sum(const TriangleMesh& mesh, double lambda,
 }
 
 // A grid with a boundary, a face collapsed to a segment, a needle (cotangents bounded), a
-// vertex that no face uses, and a lone face collapsed to a segment: its zero cotangents give
-// entries of −0 only, which the sum must turn into +0 off the diagonal as Eigen's does.
+// vertex that no face uses, a lone face collapsed to a segment (its zero cotangents give
+// entries of −0 only, which the sum must turn into +0 off the diagonal as Eigen's does), and a
+// face that names one of its vertices twice (entries on that vertex's diagonal).
 TriangleMesh awkward_mesh() {
     TriangleMesh mesh = test::jittered_grid(6);
     const Eigen::Index f = 7;
@@ -57,8 +58,9 @@ TriangleMesh awkward_mesh() {
     mesh.V.row(n + 1) = Eigen::RowVector3d(3, 0, 0);
     mesh.V.row(n + 2) = Eigen::RowVector3d(4, 0, 0);
     mesh.V.row(n + 3) = Eigen::RowVector3d(5, 0, 0);
-    mesh.F.conservativeResize(mesh.F.rows() + 1, 3);
-    mesh.F.row(mesh.F.rows() - 1) = Eigen::RowVector3i(n + 1, n + 2, n + 3);
+    mesh.F.conservativeResize(mesh.F.rows() + 2, 3);
+    mesh.F.row(mesh.F.rows() - 2) = Eigen::RowVector3i(n + 1, n + 2, n + 3);
+    mesh.F.row(mesh.F.rows() - 1) = Eigen::RowVector3i(n + 3, n + 2, n + 3);
     return mesh;
 }
 
