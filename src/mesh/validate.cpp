@@ -6,15 +6,13 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <numbers>
-#include <tuple>
+#include <numeric>
 #include <utility>
 #include <vector>
 
 #include "genflow/operators/volume.h"
-#include "mesh/sort_by_vertex.h"
 #include "mesh/union_find.h"
 #include "operators/triangle.h"
 
@@ -26,7 +24,7 @@ namespace {
 struct EdgeTraversal {
     int lo;
     int hi;
-    Eigen::Index face;
+    int face;
     std::uint8_t corner_lo;  // corner index (0..2) of lo in the face
     std::uint8_t corner_hi;
     bool forward;  // the face runs lo → hi
@@ -63,21 +61,48 @@ void report(std::vector<ValidationIssue>& issues, Severity severity, const Tally
     }
 }
 
-// The smallest angle lies opposite the shortest edge (law of sines): one atan2, not three.
-double smallest_angle_degrees(const detail::Triangle& t) {
-    int k = 0;  // the corner opposite the shortest edge, (k + 1, k + 2)
-    double shortest = std::numeric_limits<double>::infinity();
-    for (int c = 0; c < 3; ++c) {
-        const double length2 = (t.x[(c + 2) % 3] - t.x[(c + 1) % 3]).squaredNorm();
-        if (length2 < shortest) {
-            shortest = length2;
-            k = c;
+// A sliver test: whether a triangle's smallest angle is below `degrees`.
+class SliverTest {
+public:
+    explicit SliverTest(double degrees)
+        : degrees_(degrees),
+          // tan of the limit, for a test by products that needs no atan2 (below).
+          tan_limit_(degrees > 0 && degrees < 60 ? std::tan(degrees * std::numbers::pi / 180)
+                                                 : std::numeric_limits<double>::quiet_NaN()) {}
+
+    // The smallest angle lies opposite the shortest edge (law of sines), at most 60°: its tan
+    // is |u×v|/(u·v) > 0. Where that ratio is off the limit's tan by more than a relative 1e-9,
+    // far above the rounding of either side, the products decide as atan2 would; near the limit
+    // (and for limits of 60° or more, or none) atan2 decides.
+    [[nodiscard]] bool operator()(const detail::Triangle& t) const {
+        int k = 0;  // the corner opposite the shortest edge, (k + 1, k + 2)
+        double shortest = std::numeric_limits<double>::infinity();
+        for (int c = 0; c < 3; ++c) {
+            const double length2 = (t.x[(c + 2) % 3] - t.x[(c + 1) % 3]).squaredNorm();
+            if (length2 < shortest) {
+                shortest = length2;
+                k = c;
+            }
         }
+        const Eigen::Vector3d u = t.x[(k + 1) % 3] - t.x[k];
+        const Eigen::Vector3d v = t.x[(k + 2) % 3] - t.x[k];
+        const double sine_part = u.cross(v).norm();
+        const double cosine_part = u.dot(v);
+        constexpr double kMargin = 1e-9;
+        const double limit = tan_limit_ * cosine_part;
+        if (cosine_part > 0 && sine_part > limit * (1 + kMargin)) {
+            return false;
+        }
+        if (cosine_part > 0 && sine_part < limit * (1 - kMargin)) {
+            return true;
+        }
+        return std::atan2(sine_part, cosine_part) * 180 / std::numbers::pi < degrees_;
     }
-    const Eigen::Vector3d u = t.x[(k + 1) % 3] - t.x[k];
-    const Eigen::Vector3d v = t.x[(k + 2) % 3] - t.x[k];
-    return std::atan2(u.cross(v).norm(), u.dot(v)) * 180 / std::numbers::pi;
-}
+
+private:
+    double degrees_;
+    double tan_limit_;  // NaN: atan2 decides every face
+};
 
 // The vertices' coordinates: non-finite ones, and ones too large for products of lengths.
 struct VertexFindings {
@@ -146,64 +171,101 @@ struct ShapeFindings {
 ShapeFindings check_shapes(const TriangleMesh& mesh, const std::vector<Eigen::Index>& good_faces,
                            double sliver_angle_degrees) {
     ShapeFindings found;
+    const SliverTest is_sliver(sliver_angle_degrees);
     for (const Eigen::Index f : good_faces) {
         const detail::Triangle t(mesh, f);
         if (t.degenerate()) {
             found.zero_area.add(f);
-        } else if (smallest_angle_degrees(t) < sliver_angle_degrees) {
+        } else if (is_sliver(t)) {
             found.sliver.add(f);
         }
     }
     return found;
 }
 
-// Extra copies of a face: the same vertex set more than once.
+// `items` ordered by key(item), stably: the few items of one vertex's bucket (insertion).
+template <typename Item, typename Key>
+void sort_bucket_stably(Item* begin, Item* end, Key&& key) {
+    for (Item* i = begin + 1; i < end; ++i) {
+        const Item item = *i;
+        Item* j = i;
+        for (; j > begin && key(item) < key(*(j - 1)); --j) {
+            *j = *(j - 1);
+        }
+        *j = item;
+    }
+}
+
+// Extra copies of a face: the same vertex set more than once. The faces' sorted vertex triples
+// (a, b, c) are counted into buckets by a, face by face, and each bucket's few sorted stably by
+// (b, c): the order (a, b, c, face), in which a copy follows its first.
 Tally duplicate_faces(const TriangleMesh& mesh, const std::vector<Eigen::Index>& good_faces) {
-    std::vector<std::tuple<int, int, int, Eigen::Index>> sorted_faces;
-    sorted_faces.reserve(good_faces.size());
+    struct SortedFace {
+        std::array<int, 3> v;
+        Eigen::Index face;
+    };
+    std::vector<SortedFace> faces;
+    faces.reserve(good_faces.size());
+    std::vector<std::size_t> start(static_cast<std::size_t>(mesh.V.rows()) + 1, 0);
     for (const Eigen::Index f : good_faces) {
         std::array<int, 3> v = {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
         std::sort(v.begin(), v.end());
-        sorted_faces.emplace_back(v[0], v[1], v[2], f);
+        faces.push_back({v, f});
+        ++start[static_cast<std::size_t>(v[0]) + 1];
     }
-    detail::sort_by_vertex(
-        sorted_faces, static_cast<std::size_t>(mesh.V.rows()),
-        [](const auto& face) { return std::get<0>(face); }, std::less<>());
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<SortedFace> sorted(faces.size());
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (const SortedFace& face : faces) {
+        sorted[next[static_cast<std::size_t>(face.v[0])]++] = face;
+    }
+    for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+        sort_bucket_stably(sorted.data() + start[v], sorted.data() + start[v + 1],
+                           [](const SortedFace& face) {
+                               return (static_cast<std::uint64_t>(face.v[1]) << 32) |
+                                      static_cast<std::uint32_t>(face.v[2]);
+                           });
+    }
     Tally duplicate{"face"};
-    for (std::size_t k = 1; k < sorted_faces.size(); ++k) {
-        const auto& [a0, b0, c0, f0] = sorted_faces[k - 1];
-        const auto& [a1, b1, c1, f1] = sorted_faces[k];
-        if (a0 == a1 && b0 == b1 && c0 == c1) {
-            duplicate.add(f1);
+    for (std::size_t k = 1; k < sorted.size(); ++k) {
+        if (sorted[k - 1].v == sorted[k].v) {
+            duplicate.add(sorted[k].face);
         }
     }
     return duplicate;
 }
 
-// The good faces' half-edges grouped by undirected edge (sorted by lo, hi, face).
+// The good faces' half-edges grouped by undirected edge, in the order (lo, hi, face): counted
+// into buckets by lo face by face (so each bucket's traversals come by face), then each
+// bucket's few sorted stably by hi.
 std::vector<EdgeTraversal> grouped_half_edges(const TriangleMesh& mesh,
                                               const std::vector<Eigen::Index>& good_faces) {
-    std::vector<EdgeTraversal> half_edges;
-    half_edges.reserve(3 * good_faces.size());
-    for (const Eigen::Index f : good_faces) {
-        for (int k = 0; k < 3; ++k) {
-            const int from = mesh.F(f, k);
-            const int to = mesh.F(f, (k + 1) % 3);
-            const auto k_from = static_cast<std::uint8_t>(k);
-            const auto k_to = static_cast<std::uint8_t>((k + 1) % 3);
-            if (from < to) {
-                half_edges.push_back({from, to, f, k_from, k_to, true});
-            } else {
-                half_edges.push_back({to, from, f, k_to, k_from, false});
+    const auto for_each_traversal = [&](auto&& visit) {
+        for (const Eigen::Index f : good_faces) {
+            for (int k = 0; k < 3; ++k) {
+                const int from = mesh.F(f, k);
+                const int to = mesh.F(f, (k + 1) % 3);
+                const auto k_from = static_cast<std::uint8_t>(k);
+                const auto k_to = static_cast<std::uint8_t>((k + 1) % 3);
+                const auto face = static_cast<int>(f);
+                visit(from < to ? EdgeTraversal{from, to, face, k_from, k_to, true}
+                                : EdgeTraversal{to, from, face, k_to, k_from, false});
             }
         }
+    };
+    std::vector<std::size_t> start(static_cast<std::size_t>(mesh.V.rows()) + 1, 0);
+    for_each_traversal(
+        [&](const EdgeTraversal& edge) { ++start[static_cast<std::size_t>(edge.lo) + 1]; });
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<EdgeTraversal> half_edges(start.back());
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for_each_traversal([&](const EdgeTraversal& edge) {
+        half_edges[next[static_cast<std::size_t>(edge.lo)]++] = edge;
+    });
+    for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+        sort_bucket_stably(half_edges.data() + start[v], half_edges.data() + start[v + 1],
+                           [](const EdgeTraversal& edge) { return edge.hi; });
     }
-    detail::sort_by_vertex(
-        half_edges, static_cast<std::size_t>(mesh.V.rows()),
-        [](const EdgeTraversal& edge) { return edge.lo; },
-        [](const EdgeTraversal& x, const EdgeTraversal& y) {
-            return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
-        });
     return half_edges;
 }
 
@@ -251,10 +313,11 @@ TopologyFindings check_topology(const TriangleMesh& mesh,
             if (first.forward == second.forward) {
                 found.inconsistent.add(first.lo, first.hi);
             }
-            corners.unite(static_cast<std::size_t>(3 * first.face + first.corner_lo),
-                          static_cast<std::size_t>(3 * second.face + second.corner_lo));
-            corners.unite(static_cast<std::size_t>(3 * first.face + first.corner_hi),
-                          static_cast<std::size_t>(3 * second.face + second.corner_hi));
+            const auto corner = [](const EdgeTraversal& edge, std::uint8_t k) {
+                return 3 * static_cast<std::size_t>(edge.face) + k;
+            };
+            corners.unite(corner(first, first.corner_lo), corner(second, second.corner_lo));
+            corners.unite(corner(first, first.corner_hi), corner(second, second.corner_hi));
         } else {
             found.non_manifold_edge.add(first.lo, first.hi);
         }

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
+
 #include <limits>
 
 #include "genflow/mesh/primitives.h"
@@ -122,6 +125,30 @@ TEST(Validate, SliversAreWarnings) {
     const ValidationReport report = validate(mesh);
     EXPECT_EQ(report.sliver_faces, 2);
     EXPECT_EQ(report.zero_area_faces, 0);
+}
+
+// A face is a sliver when its smallest angle is below the limit, however close to it: the apex
+// angle θ of an isosceles triangle (legs 1, θ < 60° the smallest) on either side of the limit,
+// by a millionth (decided by the test's products) and by 1e-12 (by atan2).
+TEST(Validate, SliversAreFacesWhoseSmallestAngleIsBelowTheLimit) {
+    const auto slivers = [](double apex_degrees, double limit_degrees) {
+        const double apex = apex_degrees * std::numbers::pi / 180;
+        TriangleMesh mesh;
+        mesh.V.resize(3, 3);
+        mesh.V << 0, 0, 0, 1, 0, 0, std::cos(apex), std::sin(apex), 0;
+        mesh.F.resize(1, 3);
+        mesh.F << 0, 1, 2;
+        return validate(mesh, {.sliver_angle_degrees = limit_degrees}).sliver_faces;
+    };
+    for (const double limit : {0.5, 1.0, 10.0, 45.0}) {
+        for (const double off : {1e-6, 1e-12}) {
+            EXPECT_EQ(slivers(limit * (1 - off), limit), 1) << limit << " " << off;
+            EXPECT_EQ(slivers(limit * (1 + off), limit), 0) << limit << " " << off;
+        }
+    }
+    // From 60° on every triangle is a sliver: its smallest angle is at most 60°.
+    EXPECT_EQ(slivers(60, 75), 1);
+    EXPECT_EQ(slivers(30, 0), 0);
 }
 
 TEST(Validate, NonManifoldEdge) {
