@@ -186,6 +186,9 @@ ShapeFindings check_shapes(const TriangleMesh& mesh, const std::vector<Eigen::In
 // `items` ordered by key(item), stably: the few items of one vertex's bucket (insertion).
 template <typename Item, typename Key>
 void sort_bucket_stably(Item* begin, Item* end, Key&& key) {
+    if (end - begin < 2) {  // (an empty bucket may sit at a null or one-past-the-end pointer)
+        return;
+    }
     for (Item* i = begin + 1; i < end; ++i) {
         const Item item = *i;
         Item* j = i;
