@@ -66,9 +66,9 @@ class SliverTest {
 public:
     explicit SliverTest(double degrees)
         : degrees_(degrees),
+          by_products_(degrees > 0 && degrees < 60),
           // tan of the limit, for a test by products that needs no atan2 (below).
-          tan_limit_(degrees > 0 && degrees < 60 ? std::tan(degrees * std::numbers::pi / 180)
-                                                 : std::numeric_limits<double>::quiet_NaN()) {}
+          tan_limit_(by_products_ ? std::tan(degrees * std::numbers::pi / 180) : 0) {}
 
     // The smallest angle lies opposite the shortest edge (law of sines), at most 60°: its tan
     // is |u×v|/(u·v) > 0. Where that ratio is off the limit's tan by more than a relative 1e-9,
@@ -88,20 +88,23 @@ public:
         const Eigen::Vector3d v = t.x[(k + 2) % 3] - t.x[k];
         const double sine_part = u.cross(v).norm();
         const double cosine_part = u.dot(v);
-        constexpr double kMargin = 1e-9;
-        const double limit = tan_limit_ * cosine_part;
-        if (cosine_part > 0 && sine_part > limit * (1 + kMargin)) {
-            return false;
-        }
-        if (cosine_part > 0 && sine_part < limit * (1 - kMargin)) {
-            return true;
+        if (by_products_ && cosine_part > 0) {
+            constexpr double kMargin = 1e-9;
+            const double limit = tan_limit_ * cosine_part;
+            if (sine_part > limit * (1 + kMargin)) {
+                return false;
+            }
+            if (sine_part < limit * (1 - kMargin)) {
+                return true;
+            }
         }
         return std::atan2(sine_part, cosine_part) * 180 / std::numbers::pi < degrees_;
     }
 
 private:
     double degrees_;
-    double tan_limit_;  // NaN: atan2 decides every face
+    bool by_products_;  // else atan2 decides every face
+    double tan_limit_;
 };
 
 // The vertices' coordinates: non-finite ones, and ones too large for products of lengths.

@@ -4,9 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
-
 #include <limits>
+#include <numbers>
 
 #include "genflow/mesh/primitives.h"
 
