@@ -35,7 +35,7 @@ std::vector<HalfEdge> sorted_half_edges(const Eigen::MatrixX3i& F) {
     }
     detail::sort_by_vertex(
         edges, static_cast<std::size_t>(vertices), [](const HalfEdge& e) { return e.key.first; },
-        [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; });
+        [](const HalfEdge& e) { return e.key.second; });
     return edges;
 }
 

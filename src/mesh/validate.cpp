@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
-#include <numeric>
 #include <utility>
 #include <vector>
 
 #include "genflow/operators/volume.h"
+#include "mesh/sort_by_vertex.h"
 #include "mesh/union_find.h"
 #include "operators/triangle.h"
 
@@ -186,22 +186,6 @@ ShapeFindings check_shapes(const TriangleMesh& mesh, const std::vector<Eigen::In
     return found;
 }
 
-// `items` ordered by key(item), stably: the few items of one vertex's bucket (insertion).
-template <typename Item, typename Key>
-void sort_bucket_stably(Item* begin, Item* end, Key&& key) {
-    if (end - begin < 2) {  // (an empty bucket may sit at a null or one-past-the-end pointer)
-        return;
-    }
-    for (Item* i = begin + 1; i < end; ++i) {
-        const Item item = *i;
-        Item* j = i;
-        for (; j > begin && key(item) < key(*(j - 1)); --j) {
-            *j = *(j - 1);
-        }
-        *j = item;
-    }
-}
-
 // Extra copies of a face: the same vertex set more than once. The faces' sorted vertex triples
 // (a, b, c) are counted into buckets by a, face by face, and each bucket's few sorted stably by
 // (b, c): the order (a, b, c, face), in which a copy follows its first.
@@ -210,28 +194,20 @@ Tally duplicate_faces(const TriangleMesh& mesh, const std::vector<Eigen::Index>&
         std::array<int, 3> v;
         Eigen::Index face;
     };
-    std::vector<SortedFace> faces;
-    faces.reserve(good_faces.size());
-    std::vector<std::size_t> start(static_cast<std::size_t>(mesh.V.rows()) + 1, 0);
+    std::vector<SortedFace> sorted;
+    sorted.reserve(good_faces.size());
     for (const Eigen::Index f : good_faces) {
         std::array<int, 3> v = {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
         std::sort(v.begin(), v.end());
-        faces.push_back({v, f});
-        ++start[static_cast<std::size_t>(v[0]) + 1];
+        sorted.push_back({v, f});
     }
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<SortedFace> sorted(faces.size());
-    std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (const SortedFace& face : faces) {
-        sorted[next[static_cast<std::size_t>(face.v[0])]++] = face;
-    }
-    for (std::size_t v = 0; v + 1 < start.size(); ++v) {
-        sort_bucket_stably(sorted.data() + start[v], sorted.data() + start[v + 1],
-                           [](const SortedFace& face) {
-                               return (static_cast<std::uint64_t>(face.v[1]) << 32) |
-                                      static_cast<std::uint32_t>(face.v[2]);
-                           });
-    }
+    detail::sort_by_vertex(
+        sorted, static_cast<std::size_t>(mesh.V.rows()),
+        [](const SortedFace& face) { return face.v[0]; },
+        [](const SortedFace& face) {
+            return (static_cast<std::uint64_t>(face.v[1]) << 32) |
+                   static_cast<std::uint32_t>(face.v[2]);
+        });
     Tally duplicate{"face"};
     for (std::size_t k = 1; k < sorted.size(); ++k) {
         if (sorted[k - 1].v == sorted[k].v) {
@@ -259,20 +235,10 @@ std::vector<EdgeTraversal> grouped_half_edges(const TriangleMesh& mesh,
             }
         }
     };
-    std::vector<std::size_t> start(static_cast<std::size_t>(mesh.V.rows()) + 1, 0);
-    for_each_traversal(
-        [&](const EdgeTraversal& edge) { ++start[static_cast<std::size_t>(edge.lo) + 1]; });
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<EdgeTraversal> half_edges(start.back());
-    std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for_each_traversal([&](const EdgeTraversal& edge) {
-        half_edges[next[static_cast<std::size_t>(edge.lo)]++] = edge;
-    });
-    for (std::size_t v = 0; v + 1 < start.size(); ++v) {
-        sort_bucket_stably(half_edges.data() + start[v], half_edges.data() + start[v + 1],
-                           [](const EdgeTraversal& edge) { return edge.hi; });
-    }
-    return half_edges;
+    return detail::items_by_vertex<EdgeTraversal>(
+        static_cast<std::size_t>(mesh.V.rows()), for_each_traversal,
+        [](const EdgeTraversal& edge) { return edge.lo; },
+        [](const EdgeTraversal& edge) { return edge.hi; });
 }
 
 // The surface's topology over the good faces: edges, boundary, orientation, fans, components.
