@@ -81,8 +81,8 @@ void scatter_rows_below(const Supernode& node, const double* below, double* z) {
     }
 }
 
-// rows_z[C·i + c] -= entries[i] · value[c] for i below `count`: a column's multiples taken from
-// packed rows.
+// rows_z[C·i + c] -= entries[i] · solved[c] for i below `count`: a solved column's multiples
+// taken from packed rows.
 template <int C>
 void subtract_multiples(const double* entries, int count, const double* solved, double* rows_z) {
     double value[C];
@@ -137,11 +137,15 @@ void products_below_of(const Supernode& node, int j, const double* below, double
     }
 }
 
+// products_below_of() for all the node's columns, four at a time: with three right-hand sides,
+// twelve chains keep the adder busy through its latency and their sums in registers.
 template <int C>
 void products_below(const Supernode& node, const double* below, double* sums) {
+    constexpr int kSideBySide = 4;
+    static_assert(kSideBySide == 4, "one case per remainder below");
     int j = 0;
-    for (; j + 4 <= node.width; j += 4) {
-        products_below_of<C, 4>(node, j, below, sums);
+    for (; j + kSideBySide <= node.width; j += kSideBySide) {
+        products_below_of<C, kSideBySide>(node, j, below, sums);
     }
     switch (node.width - j) {
         case 3:
