@@ -91,7 +91,10 @@ struct Side {
     Eigen::VectorXd log_weight;         // −inf for zero-mass vertices
     std::vector<std::uint32_t> active;  // vertices with positive weight
     double total_weight = 0;
-    detail::PointGrid grid;        // over `active` (grid ids index `active`)
+    detail::PointGrid grid;  // over `active` (grid ids index `active`)
+    // The row in `points` of the point at each grid slot (active[grid.id(slot)]), found once a
+    // gridding: the sums read it for every term.
+    std::vector<std::uint32_t> point_at_slot;
     RowMatrixXd descriptors;       // per point (PointDescriptors), or no columns
     RowMatrixXd slot_descriptors;  // the same rows in the grid's slot order
     // |φ − ψ|² of this side's points (rows) against the other side's (columns, see
@@ -152,6 +155,7 @@ struct Side {
             }
         }
         if (n == 0) {
+            point_at_slot.clear();
             return;
         }
         // The radius of a query whose nearest point has the mean weight and lies one mean
@@ -179,11 +183,15 @@ struct Side {
                 inverse_shell_d[static_cast<std::size_t>(k)] = 1 / (rho * rho + eps2);
             }
         }
+        point_at_slot.resize(active.size());
+        for (std::size_t slot = 0; slot < active.size(); ++slot) {
+            point_at_slot[slot] = active[grid.id(static_cast<std::uint32_t>(slot))];
+        }
         if (descriptors.cols() > 0) {
             slot_descriptors.resize(n, descriptors.cols());
             for (Eigen::Index slot = 0; slot < n; ++slot) {
                 slot_descriptors.row(slot) =
-                    descriptors.row(active[grid.id(static_cast<std::uint32_t>(slot))]);
+                    descriptors.row(point_at_slot[static_cast<std::size_t>(slot)]);
             }
         }
     }
@@ -192,9 +200,10 @@ struct Side {
         return descriptors.cols() > 0;
     }
 
-    // The column of the other side's descriptor table that holds the point at `slot`.
-    [[nodiscard]] Eigen::Index table_column(std::uint32_t slot) const {
-        return table_columns_by_slot ? static_cast<Eigen::Index>(slot) : active[grid.id(slot)];
+    // The columns of the other side's descriptor table by this side's grid slots: null when
+    // they are the slots themselves.
+    [[nodiscard]] const std::uint32_t* table_columns() const {
+        return table_columns_by_slot ? nullptr : point_at_slot.data();
     }
 
 private:
@@ -292,39 +301,49 @@ double gather_within_radius(const Side& to, const Eigen::Vector3d& x, const Para
     return radius2;
 }
 
-// Adds |φ_u − ψ_slot|² (PointDescriptors) to the squared distances in `found`.
-void add_descriptor_distances(const Side& from, const Side& to, Eigen::Index u, Neighbours& found) {
+// Returns use(distance), where distance(slot) is |φ_u − ψ_slot|² (PointDescriptors) of `from`'s
+// point u and `to`'s point at `slot`: read from the table when there is one (by the column of the
+// slot's point, or by the slot itself), else computed, the same value either way. One form per
+// call, so that the loops in `use` have no branch per term.
+template <typename Use>
+decltype(auto) with_descriptor_distance(const Side& from, const Side& to, Eigen::Index u,
+                                        Use&& use) {
     if (from.descriptor_table != nullptr) {
         const double* row = from.descriptor_table->row(u).data();
-        for (std::size_t k = 0; k < found.count; ++k) {
-            found.distances2[k] += row[to.table_column(found.slots[k])];
+        if (const std::uint32_t* columns = to.table_columns()) {
+            return use([row, columns](std::uint32_t slot) { return row[columns[slot]]; });
         }
-        return;
+        return use([row](std::uint32_t slot) { return row[slot]; });
     }
     const auto phi = from.descriptors.row(u);
-    for (std::size_t k = 0; k < found.count; ++k) {
-        found.distances2[k] +=
-            (to.slot_descriptors.row(static_cast<Eigen::Index>(found.slots[k])) - phi)
-                .squaredNorm();
-    }
+    return use([&to, phi](std::uint32_t slot) {
+        return (to.slot_descriptors.row(static_cast<Eigen::Index>(slot)) - phi).squaredNorm();
+    });
+}
+
+// Adds |φ_u − ψ_slot|² (PointDescriptors) to the squared distances in `found`.
+void add_descriptor_distances(const Side& from, const Side& to, Eigen::Index u, Neighbours& found) {
+    with_descriptor_distance(from, to, u, [&found](auto distance) {
+        const std::uint32_t* slots = found.slots.data();
+        double* distances2 = found.distances2.data();
+        for (std::size_t k = 0; k < found.count; ++k) {
+            distances2[k] += distance(slots[k]);
+        }
+    });
 }
 
 // The smallest κ_m² d_m over the block of `rings` around the query u, with descriptors. D must
 // come from the full distances d_m of R^{3+k} (a smaller one would drop more than the bound
-// allows), so the block's points are collected (into `found`) and their descriptor distances
-// added. The radius then bounds the spatial part |x − y|² ≤ d − ε², which keeps every term
-// with d ≤ D; the shell bound stays valid because the descriptors only make each term smaller.
+// allows), so each of the block's points has its descriptor distance added, in one pass that
+// keeps nothing. The radius then bounds the spatial part |x − y|² ≤ d − ε², which keeps every
+// term with d ≤ D; the shell bound stays valid because the descriptors only make each term
+// smaller.
 double smallest_scaled_with_descriptors(const Side& from, const Side& to, const Parameters& p,
-                                        Eigen::Index u, int rings, Neighbours& found) {
-    const detail::PointGrid& grid = to.grid;
-    grid.collect_within(from.points.row(u).transpose(), rings,
-                        std::numeric_limits<double>::infinity(), found);
-    add_descriptor_distances(from, to, u, found);
-    double smallest = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < found.count; ++k) {
-        smallest = std::min(smallest, grid.factor(found.slots[k]) * (found.distances2[k] + p.eps2));
-    }
-    return smallest;
+                                        Eigen::Index u, int rings) {
+    const Eigen::Vector3d x = from.points.row(u).transpose();
+    return with_descriptor_distance(from, to, u, [&](auto distance) {
+        return to.grid.min_scaled_distance(x, rings, p.eps2, distance);
+    });
 }
 
 // The kept terms of f_u = Σ_w weight_w d_uw^{−α}, each scaled by the nearest one's d*^α so that
@@ -345,9 +364,7 @@ KeptTerms weigh_terms(const Side& from, const Side& to, const Parameters& p, Eig
     } else if (from.has_descriptors()) {
         gather_within_radius(
             to, x, p,
-            [&](int rings) {
-                return smallest_scaled_with_descriptors(from, to, p, u, rings, found);
-            },
+            [&](int rings) { return smallest_scaled_with_descriptors(from, to, p, u, rings); },
             found);
     } else {
         gather_within_radius(
@@ -426,7 +443,7 @@ SourceSums sum_source(const Side& source, const Side& target, const Parameters& 
         std::vector<double> term_over_d;
 #pragma omp for schedule(static, 128)
         for (std::size_t slot = 0; slot < queries; ++slot) {
-            const std::uint32_t i = source.active[source.grid.id(static_cast<std::uint32_t>(slot))];
+            const std::uint32_t i = source.point_at_slot[slot];
             const KeptTerms terms = weigh_terms(source, target, p, i, found, term_over_d);
             double s0 = 0;
             double sx = 0;
@@ -495,8 +512,7 @@ TargetSums sum_target(const Side& target, const Side& source, const Parameters& 
             double& log_scale = work.log_scale[stretch];
             const std::size_t end = queries * (stretch + 1) / stretches;
             for (std::size_t slot = queries * stretch / stretches; slot < end; ++slot) {
-                const std::uint32_t j =
-                    target.active[target.grid.id(static_cast<std::uint32_t>(slot))];
+                const std::uint32_t j = target.point_at_slot[slot];
                 const KeptTerms terms = weigh_terms(target, source, p, j, found, term_over_d);
                 pairs += found.count;
                 sums.log_g[j] = terms.log_f;
@@ -597,7 +613,7 @@ struct DescriptorTable {
         }
         by_target = RowMatrixXd::Zero(target.points.rows(), moving.rows());
         for (Eigen::Index slot = 0; slot < slots; ++slot) {
-            const std::uint32_t j = target.active[target.grid.id(static_cast<std::uint32_t>(slot))];
+            const std::uint32_t j = target.point_at_slot[static_cast<std::size_t>(slot)];
             by_target.row(j) = by_moving.col(slot).transpose();
         }
     }
@@ -702,7 +718,7 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
     RowMatrixX4d accumulated = RowMatrixX4d::Zero(n, 4);  // Σc, Σc·y
 #pragma omp parallel for schedule(static) if (source_slots > kParallelLoopThreshold)
     for (Eigen::Index slot = 0; slot < source_slots; ++slot) {
-        const std::uint32_t i = source.active[source.grid.id(static_cast<std::uint32_t>(slot))];
+        const std::uint32_t i = source.point_at_slot[static_cast<std::size_t>(slot)];
         Eigen::RowVector4d row =
             covered ? Eigen::RowVector4d(
                           std::exp(base + log_coverage + source.log_weight[i] - f.log_f[i]) *

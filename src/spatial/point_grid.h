@@ -126,6 +126,41 @@ public:
         return smallest;
     }
 
+    /// min_scaled_distance() with a per-point addend: the smallest factor_p·((|query − p|² +
+    /// extra(slot of p)) + offset) over the block, for distances in a space of more dimensions
+    /// than the grid's (the pseudo-Hausdorff distance's descriptors). The squared distances are
+    /// those collect_within() finds, to the bit.
+    template <typename Extra>
+    [[nodiscard]] double min_scaled_distance(const Eigen::Vector3d& query, int k, double offset,
+                                             Extra&& extra) const {
+        double smallest = std::numeric_limits<double>::infinity();
+        constexpr double kEverywhere = std::numeric_limits<double>::infinity();
+        for_each_run(
+            query, k, kEverywhere,
+            [&](std::uint32_t begin, std::uint32_t end) GENFLOW_ALWAYS_INLINE {
+                const double qx = query[0];
+                const double qy = query[1];
+                const double qz = query[2];
+                // Two minima break the dependency chain of one.
+                double even = std::numeric_limits<double>::infinity();
+                double odd = even;
+                std::uint32_t p = begin;
+                for (; p + 1 < end; p += 2) {
+                    const double d0 = square(x_[p] - qx) + square(y_[p] - qy) + square(z_[p] - qz);
+                    const double d1 =
+                        square(x_[p + 1] - qx) + square(y_[p + 1] - qy) + square(z_[p + 1] - qz);
+                    even = std::min(even, factor_[p] * ((d0 + extra(p)) + offset));
+                    odd = std::min(odd, factor_[p + 1] * ((d1 + extra(p + 1)) + offset));
+                }
+                if (p < end) {
+                    const double d0 = square(x_[p] - qx) + square(y_[p] - qy) + square(z_[p] - qz);
+                    even = std::min(even, factor_[p] * ((d0 + extra(p)) + offset));
+                }
+                smallest = std::min({smallest, even, odd});
+            });
+        return smallest;
+    }
+
     /// Replaces the contents of `found` by the points of the block (as above) with squared
     /// distance ≤ `radius2`, with those distances; the accessors below read a point by slot.
     void collect_within(const Eigen::Vector3d& query, int k, double radius2,

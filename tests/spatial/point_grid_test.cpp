@@ -90,6 +90,40 @@ TEST(PointGrid, MinScaledDistanceCoversItsBlock) {
     }
 }
 
+// With a per-point addend (a distance in more dimensions than the grid's), the minimum is the
+// one over the points collect_within() finds in the same block, to the bit, and over all points
+// it is the brute-force minimum.
+TEST(PointGrid, MinScaledDistanceWithAnAddendIsTheMinimumOverTheCollectedPoints) {
+    const Eigen::MatrixX3d points = make_icosphere(3).V;
+    const Eigen::VectorXd factors = random_values(points.rows(), 0.5, 2.0, 6);
+    const Eigen::VectorXd extra = random_values(points.rows(), 0.0, 0.3, 7);
+    const PointGrid grid(points, Eigen::VectorXd::Ones(points.rows()), factors, 0.1);
+    const auto extra_at = [&](std::uint32_t slot) { return extra[grid.id(slot)]; };
+    NeighbourList found;
+    for (Eigen::Index q = 0; q < points.rows(); q += 5) {
+        const Eigen::Vector3d query = 1.02 * points.row(q).transpose();
+        for (const int rings : {0, 1, 3}) {
+            grid.collect_within(query, rings, std::numeric_limits<double>::infinity(), found);
+            ASSERT_GT(found.count, 0U);
+            double collected = std::numeric_limits<double>::infinity();
+            for (std::size_t k = 0; k < found.count; ++k) {
+                const std::uint32_t slot = found.slots[k];
+                collected = std::min(
+                    collected, grid.factor(slot) * ((found.distances2[k] + extra_at(slot)) + 0.01));
+            }
+            EXPECT_EQ(grid.min_scaled_distance(query, rings, 0.01, extra_at), collected)
+                << "rings " << rings;
+        }
+        double brute_force = std::numeric_limits<double>::infinity();
+        for (Eigen::Index i = 0; i < points.rows(); ++i) {
+            const double d = (points.row(i).transpose() - query).squaredNorm();
+            brute_force = std::min(brute_force, factors[i] * ((d + extra[i]) + 0.01));
+        }
+        EXPECT_NEAR(grid.min_scaled_distance(query, 0, 0.01, extra_at), brute_force,
+                    1e-14 * brute_force);
+    }
+}
+
 TEST(PointGrid, BlockWeightHoldsTheBallAndLiesWithinTheBlock) {
     const Eigen::MatrixX3d points = make_icosphere(3).V;
     const Eigen::VectorXd weights = random_values(points.rows(), 0.1, 2.0, 5);
