@@ -56,9 +56,9 @@ bool is_fraction(std::string_view token) {
 }
 
 // What the vertex lines give beside x y z, read when asked for.
-class VertexExtras {
+class VertexLineExtras {
 public:
-    VertexExtras(const VertexColumns& columns, std::int64_t vertices, VertexAttributes* out)
+    VertexLineExtras(const VertexColumns& columns, std::int64_t vertices, VertexAttributes* out)
         : columns_(columns), out_(out) {
         if (out_ == nullptr) {
             return;
@@ -158,7 +158,7 @@ TriangleMesh parse_off(std::string_view bytes, const ParseContext& context,
 
     // n vertex lines take at least 6n - 1 bytes ("0 0 0", a newline between lines): no more
     // rows than that are kept, however many the counts declare.
-    VertexExtras extras(
+    VertexLineExtras extras(
         columns,
         std::min<std::int64_t>(num_vertices, static_cast<std::int64_t>(lines.bytes_left() / 6 + 1)),
         attributes);
