@@ -98,7 +98,7 @@ struct Side {
     RowMatrixXd descriptors;       // per point (PointDescriptors), or no columns
     RowMatrixXd slot_descriptors;  // the same rows in the grid's slot order
     // |φ − ψ|² of this side's points (rows) against the other side's (columns, see
-    // table_column()), when the energy tabulated them (DescriptorTable); else null.
+    // table_columns()), when the energy tabulated them (DescriptorTable); else null.
     const RowMatrixXd* descriptor_table = nullptr;
     // Whether the other side's table has a column per grid slot of this side (the target's
     // slots never change) or per point (the moving side is gridded anew at every evaluation).
