@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #if defined(__SSE2__)
@@ -74,56 +75,16 @@ public:
                    : static_cast<int>(rings);
     }
 
+    /// An addend of min_scaled_distance() that adds nothing: the grid's own distances.
+    struct NoAddend {};
+
     /// min over the points p in the block of (2k+1)³ cells around the cell of `query` of
     /// factor_p·(|query − p|² + offset), with the factors given at construction; +inf for an
     /// empty block. The block holds every point within k·cell_size() of the query (which may
     /// lie outside the grid); k = 0 means all points.
     [[nodiscard]] double min_scaled_distance(const Eigen::Vector3d& query, int k,
                                              double offset) const {
-        const double* x = x_.data();
-        const double* y = y_.data();
-        const double* z = z_.data();
-        const double* factor = factor_.data();
-        double smallest = std::numeric_limits<double>::infinity();
-        constexpr double kEverywhere = std::numeric_limits<double>::infinity();
-        for_each_run(query, k, kEverywhere,
-                     [&](std::uint32_t begin, std::uint32_t end) GENFLOW_ALWAYS_INLINE {
-                         // Minima local to the run stay in registers, and two of them break the
-                         // dependency chain of one.
-                         double even = std::numeric_limits<double>::infinity();
-                         double odd = even;
-                         std::uint32_t p = begin;
-#if defined(__SSE2__)
-                         // The same per lane as the scalar loop (the minimum is exact in any
-                         // order, and nothing here is NaN).
-                         const PairQuery pair_query(query[0], query[1], query[2]);
-                         const __m128d shift = _mm_set1_pd(offset);
-                         __m128d lanes = _mm_set1_pd(even);
-                         for (; p + 1 < end; p += 2) {
-                             const __m128d d = pair_query.distances2(x + p, y + p, z + p);
-                             lanes = _mm_min_pd(
-                                 lanes, _mm_mul_pd(_mm_loadu_pd(factor + p), _mm_add_pd(d, shift)));
-                         }
-                         even = _mm_cvtsd_f64(lanes);
-                         odd = _mm_cvtsd_f64(_mm_unpackhi_pd(lanes, lanes));
-#endif
-                         for (; p + 1 < end; p += 2) {
-                             const double d0 = square(x[p] - query[0]) + square(y[p] - query[1]) +
-                                               square(z[p] - query[2]);
-                             const double d1 = square(x[p + 1] - query[0]) +
-                                               square(y[p + 1] - query[1]) +
-                                               square(z[p + 1] - query[2]);
-                             even = std::min(even, factor[p] * (d0 + offset));
-                             odd = std::min(odd, factor[p + 1] * (d1 + offset));
-                         }
-                         if (p < end) {
-                             const double d0 = square(x[p] - query[0]) + square(y[p] - query[1]) +
-                                               square(z[p] - query[2]);
-                             even = std::min(even, factor[p] * (d0 + offset));
-                         }
-                         smallest = std::min({smallest, even, odd});
-                     });
-        return smallest;
+        return min_scaled_distance(query, k, offset, NoAddend{});
     }
 
     /// min_scaled_distance() with a per-point addend: the smallest factor_p·((|query − p|² +
@@ -133,6 +94,18 @@ public:
     template <typename Extra>
     [[nodiscard]] double min_scaled_distance(const Eigen::Vector3d& query, int k, double offset,
                                              Extra&& extra) const {
+        constexpr bool kPlain = std::is_same_v<std::decay_t<Extra>, NoAddend>;
+        const double* x = x_.data();
+        const double* y = y_.data();
+        const double* z = z_.data();
+        const double* factor = factor_.data();
+        const auto scaled = [&](std::uint32_t p, double d2) GENFLOW_ALWAYS_INLINE {
+            if constexpr (kPlain) {
+                return factor[p] * (d2 + offset);
+            } else {
+                return factor[p] * ((d2 + extra(p)) + offset);
+            }
+        };
         double smallest = std::numeric_limits<double>::infinity();
         constexpr double kEverywhere = std::numeric_limits<double>::infinity();
         for_each_run(
@@ -141,20 +114,37 @@ public:
                 const double qx = query[0];
                 const double qy = query[1];
                 const double qz = query[2];
-                // Two minima break the dependency chain of one.
+                // Minima local to the run stay in registers, and two of them break the
+                // dependency chain of one.
                 double even = std::numeric_limits<double>::infinity();
                 double odd = even;
                 std::uint32_t p = begin;
+#if defined(__SSE2__)
+                // Without an addend, two points at a time: the same per lane as the
+                // scalar loop (the minimum is exact in any order, and nothing here is
+                // NaN).
+                if constexpr (kPlain) {
+                    const PairQuery pair_query(qx, qy, qz);
+                    const __m128d shift = _mm_set1_pd(offset);
+                    __m128d lanes = _mm_set1_pd(even);
+                    for (; p + 1 < end; p += 2) {
+                        const __m128d d = pair_query.distances2(x + p, y + p, z + p);
+                        lanes = _mm_min_pd(
+                            lanes, _mm_mul_pd(_mm_loadu_pd(factor + p), _mm_add_pd(d, shift)));
+                    }
+                    even = _mm_cvtsd_f64(lanes);
+                    odd = _mm_cvtsd_f64(_mm_unpackhi_pd(lanes, lanes));
+                }
+#endif
                 for (; p + 1 < end; p += 2) {
-                    const double d0 = square(x_[p] - qx) + square(y_[p] - qy) + square(z_[p] - qz);
-                    const double d1 =
-                        square(x_[p + 1] - qx) + square(y_[p + 1] - qy) + square(z_[p + 1] - qz);
-                    even = std::min(even, factor_[p] * ((d0 + extra(p)) + offset));
-                    odd = std::min(odd, factor_[p + 1] * ((d1 + extra(p + 1)) + offset));
+                    even =
+                        std::min(even, scaled(p, squared_distance(x[p], y[p], z[p], qx, qy, qz)));
+                    odd = std::min(odd, scaled(p + 1, squared_distance(x[p + 1], y[p + 1], z[p + 1],
+                                                                       qx, qy, qz)));
                 }
                 if (p < end) {
-                    const double d0 = square(x_[p] - qx) + square(y_[p] - qy) + square(z_[p] - qz);
-                    even = std::min(even, factor_[p] * ((d0 + extra(p)) + offset));
+                    even =
+                        std::min(even, scaled(p, squared_distance(x[p], y[p], z[p], qx, qy, qz)));
                 }
                 smallest = std::min({smallest, even, odd});
             });
@@ -166,48 +156,50 @@ public:
     void collect_within(const Eigen::Vector3d& query, int k, double radius2,
                         NeighbourList& found) const {
         found.count = 0;
-        for_each_run(
-            query, k, radius2, [&](std::uint32_t begin, std::uint32_t end) GENFLOW_ALWAYS_INLINE {
-                // Locals, read once per run: the stores below could alias anything captured or
-                // reached through `this`, which would then be read again for every point.
-                const double qx = query[0];
-                const double qy = query[1];
-                const double qz = query[2];
-                const double r2 = radius2;
-                const double* x = x_.data();
-                const double* y = y_.data();
-                const double* z = z_.data();
-                found.reserve(found.count + (end - begin));
-                std::uint32_t* slots = found.slots.data();
-                double* distances2 = found.distances2.data();
-                std::size_t count = found.count;
-                // Every point is written and only the kept ones advance the count: about a third
-                // of a block is kept, in no predictable order, which a branch would mispredict.
-                std::uint32_t p = begin;
+        for_each_run(query, k, radius2,
+                     [&](std::uint32_t begin, std::uint32_t end) GENFLOW_ALWAYS_INLINE {
+                         // Locals, read once per run: the stores below could alias anything
+                         // captured or reached through `this`, which would then be read again for
+                         // every point.
+                         const double qx = query[0];
+                         const double qy = query[1];
+                         const double qz = query[2];
+                         const double r2 = radius2;
+                         const double* x = x_.data();
+                         const double* y = y_.data();
+                         const double* z = z_.data();
+                         found.reserve(found.count + (end - begin));
+                         std::uint32_t* slots = found.slots.data();
+                         double* distances2 = found.distances2.data();
+                         std::size_t count = found.count;
+                         // Every point is written and only the kept ones advance the count: about a
+                         // third of a block is kept, in no predictable order, which a branch would
+                         // mispredict.
+                         std::uint32_t p = begin;
 #if defined(__SSE2__)
-                // Two points at a time: the same operations in the same order per lane, so the
-                // same distances to the bit as the scalar loop below.
-                const PairQuery pair_query(qx, qy, qz);
-                const __m128d vr2 = _mm_set1_pd(r2);
-                for (; p + 1 < end; p += 2) {
-                    const __m128d d = pair_query.distances2(x + p, y + p, z + p);
-                    const int kept = _mm_movemask_pd(_mm_cmple_pd(d, vr2));
-                    slots[count] = p;
-                    _mm_storel_pd(distances2 + count, d);
-                    count += static_cast<std::size_t>(kept & 1);
-                    slots[count] = p + 1;
-                    _mm_storeh_pd(distances2 + count, d);
-                    count += static_cast<std::size_t>(kept >> 1);
-                }
+                         // Two points at a time: the same operations in the same order per lane, so
+                         // the same distances to the bit as the scalar loop below.
+                         const PairQuery pair_query(qx, qy, qz);
+                         const __m128d vr2 = _mm_set1_pd(r2);
+                         for (; p + 1 < end; p += 2) {
+                             const __m128d d = pair_query.distances2(x + p, y + p, z + p);
+                             const int kept = _mm_movemask_pd(_mm_cmple_pd(d, vr2));
+                             slots[count] = p;
+                             _mm_storel_pd(distances2 + count, d);
+                             count += static_cast<std::size_t>(kept & 1);
+                             slots[count] = p + 1;
+                             _mm_storeh_pd(distances2 + count, d);
+                             count += static_cast<std::size_t>(kept >> 1);
+                         }
 #endif
-                for (; p < end; ++p) {
-                    const double d = square(x[p] - qx) + square(y[p] - qy) + square(z[p] - qz);
-                    slots[count] = p;
-                    distances2[count] = d;
-                    count += d <= r2 ? 1 : 0;
-                }
-                found.count = count;
-            });
+                         for (; p < end; ++p) {
+                             const double d = squared_distance(x[p], y[p], z[p], qx, qy, qz);
+                             slots[count] = p;
+                             distances2[count] = d;
+                             count += d <= r2 ? 1 : 0;
+                         }
+                         found.count = count;
+                     });
     }
 
     /// The total weight of the points in the block of (2k+1)³ cells around the cell of `query`
@@ -249,8 +241,14 @@ public:
     }
 
 private:
-    static double square(double v) {
-        return v * v;
+    // |q − p|² as ((dx² + dy²) + dz²), the order of PairQuery's lanes: every loop finds the
+    // same bits for the same point.
+    static double squared_distance(double px, double py, double pz, double qx, double qy,
+                                   double qz) {
+        const double dx = px - qx;
+        const double dy = py - qy;
+        const double dz = pz - qz;
+        return dx * dx + dy * dy + dz * dz;
     }
 
 #if defined(__SSE2__)
