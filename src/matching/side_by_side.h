@@ -15,12 +15,12 @@
 namespace genflow::detail {
 
 /// Runs task(k) for every k < count side by side, as OpenMP tasks: tasks that run tasks side
-/// by side in turn (a contender's stiffness candidates) hand them to whichever thread is free,
-/// so three contenders on two threads do not leave one idle for a third of the time. Each task
-/// runs on one thread (the team is already busy), as it would alone in a nested region, so its
-/// results do not depend on how the tasks were scheduled. The first exception a task threw
-/// (in time) is rethrown once all have ended. A single task runs on the calling thread, which
-/// outside a team keeps both threads for it.
+/// by side in turn (a start's stiffness candidates) hand them to whichever thread is free, so
+/// a start that ends early does not leave its thread idle while the other's candidates wait.
+/// Each task runs on one thread (the team is already busy), as it would alone in a nested
+/// region, so its results do not depend on how the tasks were scheduled. The first exception a
+/// task threw (in time) is rethrown once all have ended. A single task runs on the calling
+/// thread, which outside a team keeps both threads for it.
 template <class Task>
 void run_side_by_side(std::size_t count, const Task& task) {
     if (count == 0) {
@@ -42,23 +42,27 @@ void run_side_by_side(std::size_t count, const Task& task) {
             }
         }
     };
-    const auto run_all = [&] {
+    const auto spawn_all = [&] {
         for (std::size_t k = 0; k < count; ++k) {
 #pragma omp task default(shared) firstprivate(k)
             run(k);
         }
-#pragma omp taskwait
     };
 #ifdef _OPENMP
     if (omp_in_parallel() != 0) {
-        run_all();
+        spawn_all();
+#pragma omp taskwait
     } else {
+        // The threads wait for the tasks at the region's barrier, where each runs any task of
+        // the team, nested ones too. At a taskwait libgomp runs only the waiting task's own
+        // children, which left the spawning thread idle while the other worked through a
+        // sibling's nested tasks one by one (docs/benchmarks.md, "Speed").
 #pragma omp parallel
-#pragma omp single
-        run_all();
+#pragma omp single nowait
+        spawn_all();
     }
 #else
-    run_all();
+    spawn_all();
 #endif
     if (failure) {
         std::rethrow_exception(failure);

@@ -3,8 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include <array>
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace genflow {
@@ -30,6 +37,40 @@ TEST(RunSideBySide, RunsEveryNestedTaskOnce) {
     for (const int done : seen_done) {
         EXPECT_EQ(done, static_cast<int>(kInner));
     }
+}
+
+// One start ends at once, the other runs two candidates side by side: the thread that ran the
+// short one must take a candidate rather than wait for the other start to end. Each candidate
+// waits (10 s at most) for the other to start, so both run at once only on two threads.
+TEST(RunSideBySide, AFreeThreadRunsTheNestedTasksOfABusySibling) {
+#ifdef _OPENMP
+    if (omp_get_max_threads() < 2) {
+        GTEST_SKIP() << "needs two OpenMP threads";
+    }
+    for (const std::size_t busy : {0, 1}) {
+        for (int repeat = 0; repeat < 5; ++repeat) {
+            std::atomic<int> started = 0;
+            std::array<int, 2> thread{-1, -1};
+            detail::run_side_by_side(2, [&](std::size_t k) {
+                if (k != busy) {
+                    return;
+                }
+                detail::run_side_by_side(2, [&](std::size_t t) {
+                    thread[t] = omp_get_thread_num();
+                    ++started;
+                    const auto deadline =
+                        std::chrono::steady_clock::now() + std::chrono::seconds(10);
+                    while (started.load() < 2 && std::chrono::steady_clock::now() < deadline) {
+                        std::this_thread::yield();
+                    }
+                });
+            });
+            EXPECT_NE(thread[0], thread[1]) << "busy start " << busy << ", repeat " << repeat;
+        }
+    }
+#else
+    GTEST_SKIP() << "built without OpenMP";
+#endif
 }
 
 TEST(RunSideBySide, RethrowsATasksExceptionOnceAllHaveEnded) {
