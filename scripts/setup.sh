@@ -13,10 +13,7 @@ if [[ "${CI:-}" == "true" ]]; then
   werror=ON
   unity=ON  # a third less compile time from a clean clone; editing one file rebuilds its batch
 fi
-# Sixteen files a batch: each batch parses the headers and instantiates the templates its files
-# share once, 12-16 % less compile time than CMake's default of eight (docs/building.md).
-cmake --preset release -DGENFLOW_WERROR=$werror -DCMAKE_UNITY_BUILD=$unity \
-  -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 >/dev/null
+cmake --preset release -DGENFLOW_WERROR=$werror -DCMAKE_UNITY_BUILD=$unity >/dev/null
 cmake --build --preset release
 if [[ "${CI:-}" != "true" ]]; then
   scripts/python-path.sh

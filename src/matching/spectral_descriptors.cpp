@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "genflow/exceptions.h"
@@ -14,6 +15,7 @@
 #include "genflow/operators/laplacian_eigenbasis.h"
 #include "matching/analysis_store.h"
 #include "matching/functional_map.h"
+#include "matching/side_by_side.h"
 
 namespace genflow::detail {
 
@@ -85,12 +87,21 @@ SpectralDescriptors::SpectralDescriptors(const TriangleMesh& template_mesh,
     : template_vertices_(template_mesh.V.rows()),
       template_points_(Eigen::MatrixX3d(0, 3)),
       target_points_(Eigen::MatrixX3d(0, 3)) {
-    const std::shared_ptr<const CoarseView> template_view =
-        cached<CoarseView>(template_cache, "spectral view", template_mesh, vertices,
-                           [&] { return coarse_view(template_mesh, vertices); });
+    // The two meshes' views are independent: each is found on a thread of its own.
+    std::shared_ptr<const CoarseView> template_view;
+    std::optional<CoarseView> target_view;
+    run_side_by_side(2, [&](std::size_t k) {
+        if (k == 0) {
+            template_view =
+                cached<CoarseView>(template_cache, "spectral view", template_mesh, vertices,
+                                   [&] { return coarse_view(template_mesh, vertices); });
+        } else {
+            target_view = coarse_view(target, vertices);
+        }
+    });
     const CoarseSpectrum& from = template_view->spectrum;
-    const CoarseMesh coarse_target = coarsen(target, vertices);
-    CoarseSpectrum to = coarse_spectrum(coarse_target.mesh);
+    const CoarseMesh& coarse_target = target_view->coarse;
+    CoarseSpectrum& to = target_view->spectrum;
     if (from.vertex.empty() || to.vertex.empty()) {
         throw InvalidInput("SpectralDescriptors: a mesh has no vertex with area");
     }
