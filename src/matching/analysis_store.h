@@ -8,11 +8,13 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string_view>
 #include <vector>
 
 #include "genflow/matching/template_cache.h"
 #include "genflow/mesh.h"
+#include "matching/side_by_side.h"
 
 namespace genflow::detail {
 
@@ -68,6 +70,35 @@ template <class T, class Compute>
         return cache->store().get<T>(kind, mesh, parameter, compute);
     }
     return std::make_shared<const T>(compute());
+}
+
+/// A template's analysis and a target's, as analysed_side_by_side() finds them.
+template <class T>
+struct TwoAnalyses {
+    std::shared_ptr<const T> of_template;  ///< through the cache, where there is one
+    T of_target;
+};
+
+/// `analyse(template_mesh)` through `cache` (cached()) and `analyse(target)`, side by side: the
+/// two are independent, so each is found on a thread of its own. The first exception either
+/// threw is rethrown once both have ended.
+template <class T, class Analyse>
+[[nodiscard]] TwoAnalyses<T> analysed_side_by_side(const std::shared_ptr<TemplateCache>& cache,
+                                                   std::string_view kind,
+                                                   const TriangleMesh& template_mesh,
+                                                   const TriangleMesh& target,
+                                                   Eigen::Index parameter, Analyse analyse) {
+    std::shared_ptr<const T> of_template;
+    std::optional<T> of_target;
+    run_side_by_side(2, [&](std::size_t k) {
+        if (k == 0) {
+            of_template = cached<T>(cache, kind, template_mesh, parameter,
+                                    [&] { return analyse(template_mesh); });
+        } else {
+            of_target = analyse(target);
+        }
+    });
+    return {std::move(of_template), std::move(*of_target)};
 }
 
 }  // namespace genflow::detail

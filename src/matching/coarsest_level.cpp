@@ -181,8 +181,7 @@ private:
     bool add_intrinsic_contender() {
         const Level& level = coarsest();
         try {
-            shapes_.emplace(template_shape(options_.template_cache, level.template_mesh),
-                            analyse_intrinsic_shape(level.target));
+            shapes_ = analysed_shapes(options_.template_cache, level.template_mesh, level.target);
             intrinsic_ = intrinsic_starts(
                 level.template_mesh, shapes_->first, shapes_->second,
                 1 + static_cast<std::size_t>(options_.second_opinion.alternative_starts));

@@ -70,8 +70,8 @@ const AnalysedShapes* FinerLevels::analysed_level(int l) {
     if (analysed_ != l) {
         analysed_ = l;
         try {
-            level_shapes_.emplace(template_shape(options_.template_cache, level(l).template_mesh),
-                                  analyse_intrinsic_shape(level(l).target));
+            level_shapes_ =
+                analysed_shapes(options_.template_cache, level(l).template_mesh, level(l).target);
         } catch (const SolverError&) {
             level_shapes_.reset();
         }

@@ -4,7 +4,6 @@
 #include "genflow/exceptions.h"
 #include "genflow/matching/laplacian_commutativity.h"
 #include "matching/analysis_store.h"
-#include "matching/side_by_side.h"
 
 namespace genflow::detail {
 
@@ -12,23 +11,14 @@ std::optional<FinestBases> finest_bases(const TriangleMesh& template_mesh,
                                         const TriangleMesh& target,
                                         const std::shared_ptr<TemplateCache>& template_cache) {
     constexpr int kCount = kCommutativityFunctions + 1;
-    // The two bases are independent: each is found on a thread of its own.
-    std::shared_ptr<const LaplacianEigenbasis> template_basis;
-    std::optional<LaplacianEigenbasis> target_basis;
     try {
-        run_side_by_side(2, [&](std::size_t k) {
-            if (k == 0) {
-                template_basis = cached<LaplacianEigenbasis>(
-                    template_cache, "eigenbasis", template_mesh, kCount,
-                    [&] { return laplacian_eigenbasis(template_mesh, kCount); });
-            } else {
-                target_basis = laplacian_eigenbasis(target, kCount);
-            }
-        });
+        TwoAnalyses<LaplacianEigenbasis> bases = analysed_side_by_side<LaplacianEigenbasis>(
+            template_cache, "eigenbasis", template_mesh, target, kCount,
+            [](const TriangleMesh& mesh) { return laplacian_eigenbasis(mesh, kCount); });
+        return FinestBases{*bases.of_template, std::move(bases.of_target)};
     } catch (const SolverError&) {
         return std::nullopt;
     }
-    return FinestBases{*template_basis, std::move(*target_basis)};
 }
 
 }  // namespace genflow::detail

@@ -87,10 +87,13 @@ IntrinsicShape analyse_intrinsic_shape(const TriangleMesh& mesh) {
     return shape;
 }
 
-IntrinsicShape template_shape(const std::shared_ptr<TemplateCache>& template_cache,
-                              const TriangleMesh& template_level) {
-    return *cached<IntrinsicShape>(template_cache, "intrinsic shape", template_level, 0,
-                                   [&] { return analyse_intrinsic_shape(template_level); });
+AnalysedShapes analysed_shapes(const std::shared_ptr<TemplateCache>& template_cache,
+                               const TriangleMesh& template_level,
+                               const TriangleMesh& target_level) {
+    TwoAnalyses<IntrinsicShape> shapes = analysed_side_by_side<IntrinsicShape>(
+        template_cache, "intrinsic shape", template_level, target_level, 0,
+        [](const TriangleMesh& mesh) { return analyse_intrinsic_shape(mesh); });
+    return {*shapes.of_template, std::move(shapes.of_target)};
 }
 
 Eigen::MatrixXd turning_functions(const IntrinsicShape& shape,

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "genflow/matching/multiresolution.h"
@@ -37,9 +38,14 @@ struct IntrinsicShape {
 /// \throws InvalidInput if the mesh is invalid or has no area.
 [[nodiscard]] IntrinsicShape analyse_intrinsic_shape(const TriangleMesh& mesh);
 
-/// analyse_intrinsic_shape() of a template's level, kept in `template_cache` where there is one.
-[[nodiscard]] IntrinsicShape template_shape(const std::shared_ptr<TemplateCache>& template_cache,
-                                            const TriangleMesh& template_level);
+/// A template and a target analysed alike (analyse_intrinsic_shape()).
+using AnalysedShapes = std::pair<IntrinsicShape, IntrinsicShape>;
+
+/// analyse_intrinsic_shape() of a template's level, kept in `template_cache` where there is one,
+/// and of the target's, side by side.
+[[nodiscard]] AnalysedShapes analysed_shapes(const std::shared_ptr<TemplateCache>& template_cache,
+                                             const TriangleMesh& template_level,
+                                             const TriangleMesh& target_level);
 
 /// Per vertex of the analysed shape, for each pair (a, b) of `sources` (its vertices), in the
 /// order (0, 1), (0, 2), …, (1, 2), …: n · (∇d_a × ∇d_b), the sine of the angle from the way

@@ -203,8 +203,8 @@ double orientation(const TriangleMesh& from, const TriangleMesh& to,
 
 std::vector<IntrinsicStart> intrinsic_starts(const TriangleMesh& template_mesh,
                                              const TriangleMesh& target, std::size_t count) {
-    return intrinsic_starts(template_mesh, analyse_intrinsic_shape(template_mesh),
-                            analyse_intrinsic_shape(target), count);
+    const AnalysedShapes shapes = analysed_shapes(nullptr, template_mesh, target);
+    return intrinsic_starts(template_mesh, shapes.first, shapes.second, count);
 }
 
 std::vector<IntrinsicStart> intrinsic_starts(const TriangleMesh& template_mesh,

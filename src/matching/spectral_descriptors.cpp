@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <string>
 
 #include "genflow/exceptions.h"
@@ -15,7 +14,6 @@
 #include "genflow/operators/laplacian_eigenbasis.h"
 #include "matching/analysis_store.h"
 #include "matching/functional_map.h"
-#include "matching/side_by_side.h"
 
 namespace genflow::detail {
 
@@ -87,26 +85,18 @@ SpectralDescriptors::SpectralDescriptors(const TriangleMesh& template_mesh,
     : template_vertices_(template_mesh.V.rows()),
       template_points_(Eigen::MatrixX3d(0, 3)),
       target_points_(Eigen::MatrixX3d(0, 3)) {
-    // The two meshes' views are independent: each is found on a thread of its own.
-    std::shared_ptr<const CoarseView> template_view;
-    std::optional<CoarseView> target_view;
-    run_side_by_side(2, [&](std::size_t k) {
-        if (k == 0) {
-            template_view =
-                cached<CoarseView>(template_cache, "spectral view", template_mesh, vertices,
-                                   [&] { return coarse_view(template_mesh, vertices); });
-        } else {
-            target_view = coarse_view(target, vertices);
-        }
-    });
-    const CoarseSpectrum& from = template_view->spectrum;
-    const CoarseMesh& coarse_target = target_view->coarse;
-    CoarseSpectrum& to = target_view->spectrum;
+    TwoAnalyses<CoarseView> views = analysed_side_by_side<CoarseView>(
+        template_cache, "spectral view", template_mesh, target, vertices,
+        [&](const TriangleMesh& mesh) { return coarse_view(mesh, vertices); });
+    const CoarseView& template_view = *views.of_template;
+    const CoarseSpectrum& from = template_view.spectrum;
+    const CoarseMesh& coarse_target = views.of_target.coarse;
+    CoarseSpectrum& to = views.of_target.spectrum;
     if (from.vertex.empty() || to.vertex.empty()) {
         throw InvalidInput("SpectralDescriptors: a mesh has no vertex with area");
     }
     for (const Eigen::Index k : from.vertex) {
-        template_vertex_.push_back(template_view->coarse.fine_vertex[static_cast<std::size_t>(k)]);
+        template_vertex_.push_back(template_view.coarse.fine_vertex[static_cast<std::size_t>(k)]);
     }
     template_points_ = PointIndex(template_mesh.V(template_vertex_, Eigen::all));
     target_positions_ = coarse_target.mesh.V(to.vertex, Eigen::all);

@@ -49,9 +49,6 @@ struct LimbPlacement {
 [[nodiscard]] LimbPlacement place_limbs(const IntrinsicShape& from, const IntrinsicShape& to,
                                         const Eigen::MatrixX3d& deformed);
 
-/// A template and a target analysed alike (analyse_intrinsic_shape()).
-using AnalysedShapes = std::pair<IntrinsicShape, IntrinsicShape>;
-
 /// Where a match put the template's extremities, from `deformed`: a row per vertex of the mesh
 /// `shapes.first` analyses (a level of the pyramid, as matched).
 [[nodiscard]] LimbPlacement limbs_placed(const AnalysedShapes& shapes,

@@ -11,6 +11,7 @@
 #include <memory>
 #include <thread>
 
+#include "genflow/exceptions.h"
 #include "genflow/matching/match.h"
 #include "genflow/mesh/primitives.h"
 #include "matching/analysis_store.h"
@@ -61,6 +62,50 @@ TEST(AnalysisStore, WithoutACacheComputesEveryTime) {
     const std::shared_ptr<TemplateCache> none;
     EXPECT_EQ(*cached<int>(none, "count", mesh, 0, [&] { return ++computed; }), 1);
     EXPECT_EQ(*cached<int>(none, "count", mesh, 0, [&] { return ++computed; }), 2);
+}
+
+// The vertex count of a mesh, as an analysis that tells the two meshes apart.
+int vertex_count(const TriangleMesh& mesh) {
+    return static_cast<int>(mesh.V.rows());
+}
+
+TEST(AnalysisStore, AnalysesTheTemplateThroughTheCacheAndTheTargetEveryTime) {
+    const auto cache = std::make_shared<TemplateCache>();
+    const TriangleMesh template_mesh = make_icosphere(1);
+    const TriangleMesh target = make_icosphere(2);
+    std::atomic<int> computed = 0;
+    const auto analyse = [&](const TriangleMesh& mesh) {
+        ++computed;
+        return vertex_count(mesh);
+    };
+    const TwoAnalyses<int> first =
+        analysed_side_by_side<int>(cache, "count", template_mesh, target, 0, analyse);
+    EXPECT_EQ(*first.of_template, vertex_count(template_mesh));
+    EXPECT_EQ(first.of_target, vertex_count(target));
+    const TwoAnalyses<int> second =
+        analysed_side_by_side<int>(cache, "count", template_mesh, target, 0, analyse);
+    EXPECT_EQ(second.of_template.get(), first.of_template.get());  // the kept one
+    EXPECT_EQ(second.of_target, vertex_count(target));
+    EXPECT_EQ(computed, 3);  // the template once, the target each time
+    EXPECT_EQ(cache->store().size(), 1U);
+}
+
+TEST(AnalysisStore, RethrowsWhatEitherSideThrewAndKeepsNothingOfAFailedTemplate) {
+    const auto cache = std::make_shared<TemplateCache>();
+    const TriangleMesh template_mesh = make_icosphere(1);
+    const TriangleMesh target = make_icosphere(2);
+    for (const Eigen::Index failing : {template_mesh.V.rows(), target.V.rows()}) {
+        const auto analyse = [&](const TriangleMesh& mesh) {
+            if (mesh.V.rows() == failing) {
+                throw SolverError("no analysis");
+            }
+            return vertex_count(mesh);
+        };
+        EXPECT_THROW(static_cast<void>(analysed_side_by_side<int>(cache, "count", template_mesh,
+                                                                  target, 0, analyse)),
+                     SolverError);
+    }
+    EXPECT_EQ(cache->store().size(), 1U);  // the template's, from the second call
 }
 
 // A quick match of the whole pipeline on two levels: every analysis the cache keeps is asked for.
