@@ -196,6 +196,14 @@ void add_match_flags(CLI::App& command, MatchFlags& flags) {
         ->excludes(implicit)
         ->capture_default_str();
     command
+        .add_option("--first-step", flags.first_step,
+                    "Where each flow step's backtracking starts: doubling (twice the last step's "
+                    "τ, or that τ after a step that backtracked) or last-decrease (where the "
+                    "quadratic that predicts the last step's decrease has its minimum: about one "
+                    "distance evaluation a step instead of 1.5)")
+        ->check(CLI::IsMember({"last-decrease", "doubling"}))
+        ->capture_default_str();
+    command
         .add_option("--target-extent", flags.target_extent,
                     "How much of the template the target shows: partial (a single view, large "
                     "holes, a limb cut off: matched by the one-sided distance, at the template's "
@@ -212,6 +220,8 @@ MatchOptions resolved(const MatchFlags& flags, bool has_parts) {
     const std::string prior =
         !flags.prior.empty() ? flags.prior : (has_parts ? "articulated" : "h1");
     options.prior = *parse_match_prior(prior);
+    options.first_step =
+        flags.first_step == "last-decrease" ? FirstStep::LastDecrease : FirstStep::Doubling;
     options.starts.enabled = options.starts.enabled && !flags.no_align;
     options.turn_back.enabled = options.turn_back.enabled && !flags.no_turn_back;
     options.counterparts.enabled = options.counterparts.enabled && !flags.no_counterparts;

@@ -23,7 +23,8 @@ struct MatchFlags {
     bool no_signatures_reading = false;
     bool report_orientation = false;
     bool no_counterparts = false;
-    std::string target_extent = "auto";  ///< to_string(TargetExtent)
+    std::string target_extent = "auto";   ///< to_string(TargetExtent)
+    std::string first_step = "doubling";  ///< MatchOptions::first_step
 };
 
 /// Declares `--prior` on `command`, writing into `flags` (which must outlive the parse).

@@ -41,8 +41,8 @@ void check_options(const DescentOptions& options) {
 }
 
 // The line-search policy: steepest descent in the metric, τ from the last accepted step
-// (DescentOptions::double_after_backtracking), halved until the Armijo condition holds; with a
-// quasi-Newton memory, its direction first, from τ = 1 (DescentOptions::quasi_newton_memory).
+// (DescentOptions::first_step), halved until the Armijo condition holds; with a quasi-Newton
+// memory, its direction first, from τ = 1 (DescentOptions::quasi_newton_memory).
 class LineSearch {
 public:
     LineSearch(const Energy& energy, Metric& metric, const DescentOptions& options)
@@ -119,6 +119,16 @@ private:
         return step_size_ > 0 ? std::min(growth * step_size_, longest_tau) : cap;
     }
 
+    // The first τ of an explicit steepest step of slope ⟨dE, g⟩ (DescentOptions::first_step):
+    // where the quadratic through the last step's decrease has its minimum, 2 ΔE/slope; `cap`
+    // before the first step.
+    [[nodiscard]] double first_explicit_tau(double slope, double cap) const {
+        if (options_.first_step == FirstStep::LastDecrease && last_decrease_ > 0) {
+            return std::min(2 * last_decrease_ / slope, cap);
+        }
+        return first_tau(cap, cap);
+    }
+
     void remember(double tau, int halvings) {
         step_size_ = tau;
         backtracked_ = halvings > 0;
@@ -129,10 +139,11 @@ private:
     detail::ProposedStep explicit_step(const TriangleMesh& current, double value,
                                        const VertexField& g, double slope, double cap) {
         std::optional<AcceptedStep> accepted =
-            backtrack(current, value, g, slope, first_tau(cap, cap));
+            backtrack(current, value, g, slope, first_explicit_tau(slope, cap));
         if (!accepted) {
             return {};  // no descent left at this resolution: Converged
         }
+        last_decrease_ = value - accepted->step.value;
         remember(accepted->tau, accepted->halvings);
         return std::move(accepted->step);
     }
@@ -195,6 +206,7 @@ private:
     const Energy& energy_;
     Metric& metric_;
     const DescentOptions& options_;
+    double last_decrease_ = 0;  // how far the last explicit steepest step lowered E; 0 before
     double step_size_ = 0;      // τ of the last accepted steepest step; 0 before the first
     bool backtracked_ = false;  // whether that step's first τ was refused
     std::optional<detail::QuasiNewtonMemory> memory_;  // with quasi_newton_memory > 0

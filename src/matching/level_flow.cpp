@@ -145,6 +145,7 @@ FlowResult LevelFlows::run_flow(int l, const TriangleMesh& moved, int iterations
                            .stagnation_tolerance = options_.stagnation_tolerance,
                            .stagnation_window = 20,
                            .implicit = options_.implicit,
+                           .first_step = options_.first_step,
                            .quasi_newton_memory = options_.quasi_newton_memory};
     if (options_.progress && reports) {
         descent.progress = [this, l](const FlowProgress& p) {

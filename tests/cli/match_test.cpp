@@ -608,6 +608,13 @@ TEST(MatchCli, RefusesBadInputAndWritesNothing) {
     EXPECT_NE(two_steps.err.find("--quasi-newton"), std::string::npos) << two_steps.err;
     EXPECT_NE(two_steps.err.find("--implicit"), std::string::npos) << two_steps.err;
     EXPECT_FALSE(std::filesystem::exists(out));
+    const auto unknown_first_step = run_genflow("match " + quoted(directory / "limb.ply") + " " +
+                                                quoted(directory / "limb.ply") + " -o " +
+                                                quoted(out) + " --first-step halving");
+    EXPECT_EQ(unknown_first_step.exit_code, 2);
+    EXPECT_NE(unknown_first_step.err.find("--first-step"), std::string::npos)
+        << unknown_first_step.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 }  // namespace

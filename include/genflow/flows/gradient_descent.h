@@ -10,6 +10,19 @@
 
 namespace genflow {
 
+/// Where a steepest step's backtracking starts (docs/formulas.md §9).
+enum class FirstStep {
+    /// min(2 τ_previous, cap); after a step that had to backtrack, τ_previous itself
+    /// (DescentOptions::double_after_backtracking).
+    Doubling,
+    /// The τ at which the quadratic that starts as steeply as this step and falls as far as
+    /// the last step fell has its minimum: 2 (E_previous − E)/⟨dE, g⟩, capped (Nocedal and
+    /// Wright, Numerical Optimization, §3.5). Where the flow slows down smoothly the first τ is
+    /// then nearly always taken; where the energy is nearly linear it doubles the decrease, as
+    /// Doubling doubles τ.
+    LastDecrease,
+};
+
 /// Parameters of gradient_descent(). Scale-free use: give max_displacement relative to the
 /// shape (docs/formulas.md §9: 2 % of the bounding-box diagonal).
 struct DescentOptions {
@@ -31,11 +44,14 @@ struct DescentOptions {
     /// grows the step tends to a prior-regularized projection instead of overshooting, so
     /// steps may be longer. Needs an energy with `linearize()`.
     bool implicit = false;
-    /// Where τ starts after a step that had to backtrack (its first τ refused): at twice the τ
-    /// it took, as after any step (docs/formulas.md §9: min(2 τ_previous, cap)), or, false, at that
-    /// τ itself. Twice over it overshoots again: a quarter more trials (d_H evaluations) per step
-    /// for the same results (docs/eval/results.md, "Holding the step after backtracking").
+    /// With FirstStep::Doubling, where τ starts after a step that had to backtrack (its first τ
+    /// refused): at twice the τ it took, as after any step (min(2 τ_previous, cap)), or, false,
+    /// at that τ itself. Twice over it overshoots again: a quarter more trials (d_H evaluations)
+    /// per step for the same results (docs/eval/results.md, "Holding the step after backtracking").
     bool double_after_backtracking = false;
+    /// Where an explicit steepest step's τ starts after the first step (which starts at the
+    /// cap). Implicit steps double as Doubling does: their direction changes with τ.
+    FirstStep first_step = FirstStep::Doubling;
     /// Quasi-Newton steps: L-BFGS with this many past steps, the metric's G⁻¹ its initial
     /// inverse Hessian (docs/formulas.md §9). The step is X ← X − τ H dE/dX from τ = 1, within
     /// the same displacement cap and Armijo backtracking; a direction that does not descend
@@ -48,7 +64,8 @@ struct DescentOptions {
 
 /// Steepest descent in the metric with Armijo backtracking (docs/formulas.md §9): g = G⁻¹ dE/dX,
 /// X ← X − τ g, where τ starts at min(2 τ_previous, cap), or at τ_previous after a step that
-/// backtracked (DescentOptions::double_after_backtracking), and is halved until
+/// backtracked (DescentOptions::double_after_backtracking), or, with FirstStep::LastDecrease, at
+/// min(2 (E_previous − E)/⟨dE, g⟩, cap) (DescentOptions::first_step), and is halved until
 /// E(X − τ g) ≤ E(X) − 10⁻⁴ τ ⟨dE, g⟩; the energy therefore decreases at every step. The
 /// metric is updated at every accepted position. This is the explicit flow of eq. 10 with an
 /// adaptive time step, for energies whose stiffness is unknown in advance (the

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "genflow/flows/flow.h"
+#include "genflow/flows/gradient_descent.h"
 #include "genflow/matching/landmarks.h"
 #include "genflow/matching/partial_target.h"
 #include "genflow/matching/rigid_alignment.h"
@@ -214,6 +215,10 @@ struct MatchOptions {
     /// Quasi-Newton steps (DescentOptions::quasi_newton_memory): L-BFGS in the prior's metric
     /// with this many past steps; 0, the steepest descent of eq. 14. Not with `implicit`.
     int quasi_newton_memory = 0;
+    /// Where each steepest flow step's backtracking starts (DescentOptions::first_step).
+    /// LastDecrease takes about one d_H evaluation a step instead of 1.5; being measured on the
+    /// development sample (docs/matching.md, "first_step").
+    FirstStep first_step = FirstStep::Doubling;
     /// A flow has converged when d_H fell by less than this fraction over its last 20 steps.
     double stagnation_tolerance = 1e-3;
     /// Steps of each further flow on the second coarsest level (its guided refinement, the
