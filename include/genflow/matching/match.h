@@ -216,8 +216,8 @@ struct MatchOptions {
     /// with this many past steps; 0, the steepest descent of eq. 14. Not with `implicit`.
     int quasi_newton_memory = 0;
     /// Where each steepest flow step's backtracking starts (DescentOptions::first_step).
-    /// LastDecrease takes about one d_H evaluation a step instead of 1.5; being measured on the
-    /// development sample (docs/matching.md, "first_step").
+    /// LastDecrease takes about one d_H evaluation a step where Doubling takes 1.5; why it is
+    /// not the default: docs/matching.md, "first_step".
     FirstStep first_step = FirstStep::Doubling;
     /// A flow has converged when d_H fell by less than this fraction over its last 20 steps.
     double stagnation_tolerance = 1e-3;
