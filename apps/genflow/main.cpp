@@ -13,6 +13,7 @@
 #include "genflow/io/atomic_file.h"
 #include "genflow/threads.h"
 #include "genflow/version.h"
+#include "memory_policy.h"
 #include "number_checks.h"
 #include "reports.h"
 
@@ -51,6 +52,7 @@ std::string parse_error_message(const CLI::App& app, const CLI::ParseError& erro
 
 int main(int argc, char** argv) {
     using namespace genflow::cli;
+    keep_freed_memory();
     CLI::App app{
         "genflow: generalized gradient flows of triangle meshes (Eckstein et al., SGP 2007)",
         "genflow"};

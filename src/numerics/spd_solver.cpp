@@ -25,10 +25,15 @@ namespace genflow::detail {
 // Below this many rows the factorization is simplicial, above it as CHOLMOD decides.
 constexpr Eigen::Index kSimplicialRows = 60000;
 // Factorization::ByFlopDensity: supernodal from this many flops per entry of the factor.
-// CHOLMOD's own switch (40) counts on a BLAS that is efficient on small blocks; on the
-// measured meshes simplicial is faster up to 71, supernodal from 102 (docs/benchmarks.md,
-// "By flop density").
-constexpr double kSupernodalFlopDensity = 80;
+// CHOLMOD's own switch (40) counts on a BLAS that is efficient on small blocks. Where system
+// calls are cheap, simplicial was faster up to 71 and supernodal from 102; where they are dear
+// (every one of CHOLMOD's OpenMP regions, several a supernode, makes one), simplicial is as
+// fast or faster at every density measured, up to 153. The switch, just below 102, takes on
+// each side the kind whose worst case over both machines is the smaller: between 71 and 102
+// supernodal gains little where calls are cheap and takes about twice as long where they are dear
+// (the 43K armadillo's larger half, at 83), above it gains up to 2.5 times and loses at most 1.4
+// (docs/benchmarks.md, "By flop density", "Dear system calls").
+constexpr double kSupernodalFlopDensity = 100;
 #endif
 
 namespace {

@@ -260,6 +260,11 @@ bool SplitCholesky::Half::arrange(bool supernodal) {
 // → 6.8–7.0 ms; four times made the factorization no faster and the solves slower
 // (docs/benchmarks.md, "Two halves").
 bool SplitCholesky::Half::widen_supernodes() {
+    // A simplicial factor has no supernodes, and its analysis would come out the same: the kind
+    // is chosen by flops per entry of the factor, before any amalgamation.
+    if (factor->is_super == 0) {
+        return true;
+    }
     constexpr std::array<std::size_t, 3> kWideRelaxation{8, 32, 96};
     std::copy(kWideRelaxation.begin(), kWideRelaxation.end(), common.nrelax);
     return analyze_symbolic();

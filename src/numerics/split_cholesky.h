@@ -35,9 +35,9 @@ public:
     /// positive definite.
     [[nodiscard]] bool factorize(const Eigen::SparseMatrix<double>& A);
 
-    /// Analyses both halves again with wider supernodes (CHOLMOD's relaxed amalgamation
-    /// allowed twice its columns), for a factor solved once: its factorization faster, its
-    /// solves slower. False, the analysis kept, if CHOLMOD fails; A must be factored again.
+    /// Analyses the supernodal halves again with wider supernodes (CHOLMOD's relaxed
+    /// amalgamation allowed twice its columns), for a factor solved once: its factorization faster,
+    /// its solves slower. False, the analysis kept, if CHOLMOD fails; A must be factored again.
     [[nodiscard]] bool widen_supernodes();
 
     /// A⁻¹·B for the last factored A; each column gets the bits it gets alone.
