@@ -132,11 +132,11 @@ struct SpdSolver::Impl {
     // The factorization in two halves, if A is analysed for it (Factorization::ByFlopDensity)
     // and splits; else `solver` holds A's factor.
     std::unique_ptr<SplitCholesky> split;
-    // Whether the split factor was analysed again with wider supernodes, and how many times
-    // the current pattern was factored and its factor solved with since the last time.
+    // Whether the split factor was analysed again with wider supernodes, how many times the
+    // current pattern was factored, and how many columns its last factor solved.
     bool wide = false;
     int factorizations = 0;
-    std::atomic<int> solves{0};
+    std::atomic<Eigen::Index> solved_columns{0};
 #else
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
 #endif
@@ -171,9 +171,9 @@ struct SpdSolver::Impl {
     bool factorize(const Eigen::SparseMatrix<double>& A) {
 #ifdef GENFLOW_HAS_CHOLMOD
         if (split) {
-            widen_for_one_solve();
+            widen_for_few_solves();
             ++factorizations;
-            solves = 0;
+            solved_columns = 0;
             return split->factorize(A);
         }
 #endif
@@ -182,12 +182,17 @@ struct SpdSolver::Impl {
     }
 
 #ifdef GENFLOW_HAS_CHOLMOD
-    // A factor solved once before the next factorization (a flow's step: one factorization,
-    // one solve) is best made for its factorization's speed, one solved often (GMRES's
-    // preconditioner, a frozen metric) for its solves': so a split factor is widened when its
-    // first factorization was solved with exactly once (docs/benchmarks.md, "Two halves").
-    void widen_for_one_solve() {
-        if (factorizations == 1 && solves == 1 && !wide) {
+    // Wider supernodes make a factorization faster and its solves slower, so a split factor is
+    // widened, at its second factorization, when its first one's solves did less arithmetic
+    // than the factorization (4 flops an entry of the factor and a column: forward and back):
+    // a fairing step's one solve, a volume-controlled step's six (0.88 times the time of ten
+    // steps on the horse), but not a frozen metric's, factored once and solved every step
+    // (docs/benchmarks.md, "Two halves", "Dear system calls").
+    void widen_for_few_solves() {
+        const double solve_flops =
+            4 * split->factor_entries() * static_cast<double>(solved_columns.load());
+        if (factorizations == 1 && solved_columns > 0 && solve_flops < split->factor_flops() &&
+            !wide) {
             wide = split->widen_supernodes();
         }
     }
@@ -298,7 +303,7 @@ Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& B) const {
     // solution. Both it and the simplicial solve give each column the bits it gives alone.
 #ifdef GENFLOW_HAS_CHOLMOD
     if (impl_->split) {
-        ++impl_->solves;
+        impl_->solved_columns += B.cols();
         return impl_->split->solve(B);
     }
     const cholmod_factor* factor = impl_->solver.factor();

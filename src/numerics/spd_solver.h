@@ -37,7 +37,8 @@ public:
     [[nodiscard]] bool split() const;
 
     /// Whether the factorization in two halves was analysed again with wider supernodes, as it
-    /// is when its first factor was solved with exactly once (for tests).
+    /// is when its first factor's solves did less arithmetic than its factorization (for
+    /// tests).
     [[nodiscard]] bool wide_supernodes() const;
 
     /// "CHOLMOD" or "Eigen SimplicialLDLT".

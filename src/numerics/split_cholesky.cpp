@@ -490,6 +490,14 @@ void SplitCholesky::solve_columns(const Eigen::MatrixXd& B, Eigen::Index first, 
     }
 }
 
+double SplitCholesky::factor_flops() const {
+    return halves_[0]->common.fl + halves_[1]->common.fl;
+}
+
+double SplitCholesky::factor_entries() const {
+    return halves_[0]->common.lnz + halves_[1]->common.lnz;
+}
+
 bool SplitCholesky::supernodal() const {
     return std::any_of(halves_.begin(), halves_.end(), [](const std::unique_ptr<Half>& half) {
         return half && half->factor != nullptr && half->factor->is_super != 0;

@@ -46,6 +46,11 @@ public:
     /// Whether either half's factor is supernodal.
     [[nodiscard]] bool supernodal() const;
 
+    /// The flops of the halves' factorization and the entries of their factors, by the last
+    /// analysis (CHOLMOD's counts; the dense work on S, far smaller, left out).
+    [[nodiscard]] double factor_flops() const;
+    [[nodiscard]] double factor_entries() const;
+
     /// The rows of the separator, ascending (for tests).
     [[nodiscard]] const std::vector<int>& separator() const { return separator_; }
 
