@@ -189,10 +189,12 @@ struct SpdSolver::Impl {
     // steps on the horse), but not a frozen metric's, factored once and solved every step
     // (docs/benchmarks.md, "Two halves", "Dear system calls").
     void widen_for_few_solves() {
+        if (factorizations != 1 || wide || solved_columns == 0) {
+            return;
+        }
         const double solve_flops =
             4 * split->factor_entries() * static_cast<double>(solved_columns.load());
-        if (factorizations == 1 && solved_columns > 0 && solve_flops < split->factor_flops() &&
-            !wide) {
+        if (solve_flops < split->factor_flops()) {
             wide = split->widen_supernodes();
         }
     }

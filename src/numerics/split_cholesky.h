@@ -36,8 +36,9 @@ public:
     [[nodiscard]] bool factorize(const Eigen::SparseMatrix<double>& A);
 
     /// Analyses the supernodal halves again with wider supernodes (CHOLMOD's relaxed
-    /// amalgamation allowed twice its columns), for a factor solved once: its factorization faster,
-    /// its solves slower. False, the analysis kept, if CHOLMOD fails; A must be factored again.
+    /// amalgamation allowed twice its columns), for a factor solved little: its factorization
+    /// faster, its solves slower. False, the analysis kept, if CHOLMOD fails; A must be factored
+    /// again.
     [[nodiscard]] bool widen_supernodes();
 
     /// A⁻¹·B for the last factored A; each column gets the bits it gets alone.
