@@ -8,20 +8,10 @@
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <array>
-#include <mutex>
 #include <utility>
 
 #include "numerics/factor_solves.h"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
-// OpenBLAS's thread count, where OpenBLAS is the BLAS (weak: absent otherwise).
-extern "C" {
-void openblas_set_num_threads(int) __attribute__((weak));
-int openblas_get_num_threads() __attribute__((weak));
-}
+#include "numerics/halves_side_by_side.h"
 
 namespace genflow::detail {
 
@@ -30,74 +20,6 @@ namespace {
 constexpr int kInterior = 0;   // cholmod_camd()'s constraint set of the interior rows
 constexpr int kSeparator = 1;  // … and of the separator's, eliminated after them
 constexpr int kCut = 2;        // cholmod_bisect()'s mark of a separator row
-
-// Holds OpenBLAS, where it is the BLAS, to one thread while any holder lives, and gives it back
-// its own count after the last. Two halves each calling a two-thread OpenBLAS ran 4.4 times
-// slower than one half alone (docs/benchmarks.md, "Two halves"); and the BLAS's thread count
-// changes a supernodal factor's rounding, so the halves run on one BLAS thread whether they run
-// side by side or not, for the same bits either way.
-class OneThreadBlas {
-public:
-    OneThreadBlas() {
-        const std::lock_guard<std::mutex> lock(mutex_);
-        if (!is_openblas()) {
-            return;
-        }
-        if (holders_++ == 0) {
-            own_threads_ = openblas_get_num_threads();
-            openblas_set_num_threads(1);
-        }
-    }
-    ~OneThreadBlas() {
-        const std::lock_guard<std::mutex> lock(mutex_);
-        if (!is_openblas()) {
-            return;
-        }
-        if (--holders_ == 0) {
-            openblas_set_num_threads(own_threads_);
-        }
-    }
-    OneThreadBlas(const OneThreadBlas&) = delete;
-    OneThreadBlas& operator=(const OneThreadBlas&) = delete;
-
-private:
-    static bool is_openblas() {
-        return openblas_set_num_threads != nullptr && openblas_get_num_threads != nullptr;
-    }
-
-    static inline std::mutex mutex_;
-    static inline int holders_ = 0;
-    static inline int own_threads_ = 1;
-};
-
-// Runs body(h) for both halves, side by side when two threads are free and the call is not
-// inside a parallel region, else one after the other. CHOLMOD's own OpenMP teams (a fixed four
-// threads per large supernode, SpdSolver's factorize() says why they cost) then run on the
-// calling thread: inside the region of the halves or of the caller as nested, inactive regions
-// (OpenMP's default of one active level), on one thread alone in a `teams` region of one.
-template <typename Body>
-void for_both_halves(Body&& body) {
-    const OneThreadBlas hold;
-#ifdef _OPENMP
-    if (!omp_in_parallel()) {
-        if (omp_get_max_threads() >= 2) {
-#pragma omp parallel for num_threads(2) schedule(static, 1)
-            for (int h = 0; h < 2; ++h) {
-                body(h);
-            }
-            return;
-        }
-#pragma omp teams num_teams(1) thread_limit(1)
-        {
-            body(0);
-            body(1);
-        }
-        return;
-    }
-#endif
-    body(0);
-    body(1);
-}
 
 }  // namespace
 
@@ -419,8 +341,16 @@ bool SplitCholesky::widen_supernodes() {
 
 bool SplitCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
     bool factored[2] = {false, false};
-    for_both_halves(
-        [&](int h) { factored[h] = halves_[static_cast<std::size_t>(h)]->factorize(A); });
+    const auto factor_half = [&](int h) {
+        factored[h] = halves_[static_cast<std::size_t>(h)]->factorize(A);
+    };
+    // A simplicial factorization opens no region, and a team already running starts sooner than
+    // a new thread.
+    if (supernodal()) {
+        for_both_halves_on_own_threads(factor_half);
+    } else {
+        for_both_halves(factor_half);
+    }
     if (!factored[0] || !factored[1]) {
         return false;
     }

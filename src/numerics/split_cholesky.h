@@ -31,8 +31,9 @@ public:
     [[nodiscard]] bool analyze(const Eigen::SparseMatrix<double>& A, double supernodal_switch);
 
     /// Factors A, of the analysed pattern, its halves on two threads when there are two and
-    /// the call is not inside a parallel region (the same bits either way). False if A is not
-    /// positive definite.
+    /// the call is not inside a parallel region (the same bits either way; supernodal halves on
+    /// threads of their own, halves_side_by_side.h says why). False if A is not positive
+    /// definite.
     [[nodiscard]] bool factorize(const Eigen::SparseMatrix<double>& A);
 
     /// Analyses the supernodal halves again with wider supernodes (CHOLMOD's relaxed

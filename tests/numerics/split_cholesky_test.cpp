@@ -135,28 +135,33 @@ TEST(SplitCholesky, DeclinesAMatrixWithoutASmallSeparator) {
 }
 
 // The halves run side by side on two threads (the BLAS held to one meanwhile, and given back its
-// own count after), or one after the other inside a parallel region: the same bits.
+// own count after; supernodal halves on threads of their own), or one after the other inside a
+// parallel region: the same bits, for either kind of factor.
 TEST(SplitCholesky, FactorsToTheSameBitsOnOneThreadOrTwo) {
     const Eigen::SparseMatrix<double> A = test::sphere_h1_matrix(5);
     const Eigen::MatrixXd B = test::random_matrix(A.rows(), 3, 7);
     const int blas_threads = openblas_get_num_threads != nullptr ? openblas_get_num_threads() : 0;
-    detail::SplitCholesky top;
-    ASSERT_TRUE(top.analyze(A, 80));
-    ASSERT_TRUE(top.factorize(A));
-    const Eigen::MatrixXd at_top = top.solve(B);
-    EXPECT_EQ(openblas_get_num_threads != nullptr ? openblas_get_num_threads() : 0, blas_threads);
-    Eigen::MatrixXd inside;
+    for (const double supernodal_switch : {kAlwaysSupernodal, kNeverSupernodal}) {
+        detail::SplitCholesky top;
+        ASSERT_TRUE(top.analyze(A, supernodal_switch));
+        ASSERT_TRUE(top.factorize(A));
+        EXPECT_EQ(top.supernodal(), supernodal_switch == kAlwaysSupernodal);
+        const Eigen::MatrixXd at_top = top.solve(B);
+        EXPECT_EQ(openblas_get_num_threads != nullptr ? openblas_get_num_threads() : 0,
+                  blas_threads);
+        Eigen::MatrixXd inside;
 #pragma omp parallel num_threads(2)
-    {
-#pragma omp single
         {
-            detail::SplitCholesky nested;
-            if (nested.analyze(A, 80) && nested.factorize(A)) {
-                inside = nested.solve(B);
+#pragma omp single
+            {
+                detail::SplitCholesky nested;
+                if (nested.analyze(A, supernodal_switch) && nested.factorize(A)) {
+                    inside = nested.solve(B);
+                }
             }
         }
+        EXPECT_EQ(at_top, inside) << "supernodal switch " << supernodal_switch;
     }
-    EXPECT_EQ(at_top, inside);
 }
 
 }  // namespace
