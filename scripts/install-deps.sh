@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs everything genflow needs from Debian 12 packages. Idempotent: does nothing when all
 # packages are present; otherwise runs apt-get (as root, or through sudo).
+# --anchors: also the speed harness's CGAL anchor (libcgal-dev, header-only, for
+# bench/anchors/hausdorff_anchor; genflow itself never links it).
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
@@ -12,6 +14,14 @@ packages=(
   libopenblas0-pthread
   clang clang-format libfuzzer-14-dev
 )
+case "${1:-}" in
+  "") ;;
+  --anchors) packages+=(libcgal-dev) ;;
+  *)
+    echo "install-deps: unknown option '$1' (the only one is --anchors)" >&2
+    exit 2
+    ;;
+esac
 missing=()
 for package in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then

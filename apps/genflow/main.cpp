@@ -52,6 +52,7 @@ std::string parse_error_message(const CLI::App& app, const CLI::ParseError& erro
 
 int main(int argc, char** argv) {
     using namespace genflow::cli;
+    ask_for_huge_pages(argv);
     keep_freed_memory();
     CLI::App app{
         "genflow: generalized gradient flows of triangle meshes (Eckstein et al., SGP 2007)",
