@@ -6,6 +6,7 @@
 
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <utility>
 
@@ -113,7 +114,13 @@ void for_both_halves_on_own_threads(Body&& body) {
             return failure;
         };
         std::exception_ptr second_failure;
-        std::thread second([&] { second_failure = alone(1); });
+        std::thread second;
+        try {
+            second = std::thread([&] { second_failure = alone(1); });
+        } catch (const std::system_error&) {  // no thread to be had: the team's way
+            for_both_halves(std::forward<Body>(body));
+            return;
+        }
         const std::exception_ptr first_failure = alone(0);
         second.join();
         for (const std::exception_ptr& failure : {first_failure, second_failure}) {
