@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cstdlib>
 #include <fstream>
 
@@ -47,7 +48,13 @@ bool huge_pages_on_request(std::string_view mode) {
 }
 
 void ask_for_huge_pages(char** argv) {
-    ask_for_huge_pages("/proc/self/exe", argv);
+    // The executable's own path rather than /proc/self/exe, whose name the process would take
+    // (`ps` and `pkill` would see "exe").
+    std::array<char, 4096> path{};
+    const ssize_t length = readlink("/proc/self/exe", path.data(), path.size() - 1);
+    if (length > 0) {
+        ask_for_huge_pages(path.data(), argv);
+    }
 }
 
 void ask_for_huge_pages(const char* program, char** argv) {

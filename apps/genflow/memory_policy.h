@@ -30,7 +30,8 @@ void keep_freed_memory();
 /// fails. Must be called before anything else in `main`.
 void ask_for_huge_pages(char** argv);
 
-/// ask_for_huge_pages() starting `program` (the tool starts itself, /proc/self/exe).
+/// ask_for_huge_pages() starting `program` (the tool starts itself, by the path
+/// /proc/self/exe links to).
 void ask_for_huge_pages(const char* program, char** argv);
 
 /// GLIBC_TUNABLES with glibc.malloc.hugetlb=1 added to `current` (null when it is unset);
