@@ -7,22 +7,20 @@
 #include <cstdlib>
 #include <fstream>
 
-#if __has_include(<malloc.h>)
-#include <malloc.h>  // defines __GLIBC__ where it is glibc's
-#endif
-
-// glibc.malloc.hugetlb is read from glibc 2.35 on.
-#if defined(__GLIBC__)
-#define GENFLOW_GLIBC_HAS_HUGE_PAGE_TUNABLE __GLIBC_PREREQ(2, 35)
-#else
-#define GENFLOW_GLIBC_HAS_HUGE_PAGE_TUNABLE 0
-#endif
-
 namespace genflow::cli {
 
 namespace {
 
 constexpr std::string_view kHugePages = "glibc.malloc.hugetlb";
+
+// The path /proc/self/exe links to, empty if it cannot be read. The tool starts itself by it
+// rather than by /proc/self/exe, whose name the process would take (`ps` and `pkill` would see
+// "exe").
+std::string own_executable() {
+    std::array<char, 4096> path{};
+    const ssize_t length = readlink("/proc/self/exe", path.data(), path.size() - 1);
+    return length > 0 ? std::string(path.data(), static_cast<std::size_t>(length)) : "";
+}
 
 }  // namespace
 
@@ -48,13 +46,7 @@ bool huge_pages_on_request(std::string_view mode) {
 }
 
 void ask_for_huge_pages(char** argv) {
-    // The executable's own path rather than /proc/self/exe, whose name the process would take
-    // (`ps` and `pkill` would see "exe").
-    std::array<char, 4096> path{};
-    const ssize_t length = readlink("/proc/self/exe", path.data(), path.size() - 1);
-    if (length > 0) {
-        ask_for_huge_pages(path.data(), argv);
-    }
+    ask_for_huge_pages(nullptr, argv);
 }
 
 void ask_for_huge_pages(const char* program, char** argv) {
@@ -69,10 +61,14 @@ void ask_for_huge_pages(const char* program, char** argv) {
     if (!std::getline(mode_file, mode) || !huge_pages_on_request(mode)) {
         return;
     }
+    const std::string executable = program != nullptr ? program : own_executable();
+    if (executable.empty()) {
+        return;
+    }
     const std::optional<std::string> previous =
         current != nullptr ? std::optional<std::string>(current) : std::nullopt;
     setenv("GLIBC_TUNABLES", tunables->c_str(), 1);
-    execv(program, argv);
+    execv(executable.c_str(), argv);
     // Still here: the new start failed, and this process goes on as it was.
     if (previous) {
         setenv("GLIBC_TUNABLES", previous->c_str(), 1);

@@ -9,6 +9,17 @@
 #include <string>
 #include <string_view>
 
+#if __has_include(<malloc.h>)
+#include <malloc.h>  // defines __GLIBC__ where it is glibc's
+#endif
+
+// Whether glibc reads glibc.malloc.hugetlb, which it does from 2.35 on.
+#if defined(__GLIBC__)
+#define GENFLOW_GLIBC_HAS_HUGE_PAGE_TUNABLE __GLIBC_PREREQ(2, 35)
+#else
+#define GENFLOW_GLIBC_HAS_HUGE_PAGE_TUNABLE 0
+#endif
+
 namespace genflow::cli {
 
 /// Starts glibc's malloc where its own adaptive thresholds end: blocks up to 32 MiB come from the
@@ -30,8 +41,8 @@ void keep_freed_memory();
 /// fails. Must be called before anything else in `main`.
 void ask_for_huge_pages(char** argv);
 
-/// ask_for_huge_pages() starting `program` (the tool starts itself, by the path
-/// /proc/self/exe links to).
+/// ask_for_huge_pages() starting `program`; null, the tool itself, by the path /proc/self/exe
+/// links to (found only when it starts again).
 void ask_for_huge_pages(const char* program, char** argv);
 
 /// GLIBC_TUNABLES with glibc.malloc.hugetlb=1 added to `current` (null when it is unset);

@@ -6,8 +6,8 @@ median wall time of each, their ratio and the goal. Per-step rows time STEPS ste
 and divide the difference by STEPS, so that reading and set-up do not count. The anchors:
 bench/anchors/fairing_anchor (libigl's implicit fairing loop re-expressed with Eigen) and, where
 Debian's libcgal-dev was installed when genflow was configured (`scripts/install-deps.sh
---anchors`), bench/anchors/hausdorff_anchor (CGAL 5.5's bounded-error Hausdorff distance). Matching has no anchor in Debian: its rows give
-genflow's time against the goal alone.
+--anchors`), bench/anchors/hausdorff_anchor (CGAL 5.5's bounded-error Hausdorff distance).
+Matching has no anchor in Debian: its rows give genflow's time against the goal alone.
 
 Usage: /usr/bin/python3 bench/anchors/anchors.py [--build build/release] [--runs 3]
            [--only fairing,frozen,fixed,cpu,volume,hausdorff,match,demo]

@@ -96,14 +96,8 @@ ChildRun run_child_asking_for_huge_pages(const char* tunables) {
     return run;
 }
 
-#if defined(__GLIBC__)
-#define GENFLOW_TEST_GLIBC_HAS_HUGE_PAGE_TUNABLE __GLIBC_PREREQ(2, 35)
-#else
-#define GENFLOW_TEST_GLIBC_HAS_HUGE_PAGE_TUNABLE 0
-#endif
-
 TEST(MemoryPolicy, StartsAgainWithHugePagesWhereTheKernelGivesThemOnRequest) {
-#if !GENFLOW_TEST_GLIBC_HAS_HUGE_PAGE_TUNABLE
+#if !GENFLOW_GLIBC_HAS_HUGE_PAGE_TUNABLE
     GTEST_SKIP() << "glibc 2.35 or later only (the setting is glibc's)";
 #else
     std::ifstream mode_file("/sys/kernel/mm/transparent_hugepage/enabled");
