@@ -21,12 +21,30 @@ namespace {
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 // Below this many points a thread team costs more than it saves: for the neighbour sums, and
 // for the loops of a few operations per point (whose team is worth it on large meshes only,
-// and whose barriers cost most when the cores are shared).
+// and whose barriers cost most when the cores are shared). Below them a loop runs without a
+// region: one of a single thread still makes libgomp a team and a futex call (two when nested
+// in the side-by-side flows of a match), some 6 regions an evaluation.
 constexpr Eigen::Index kParallelThreshold = 2000;
 constexpr Eigen::Index kParallelLoopThreshold = 20000;
 // The shells of shell_radius2(): this many per grid cell, and at most this many per query.
 constexpr int kShellsPerCell = 4;
 constexpr int kMaxShells = 4096;
+
+// Calls body(k) for k in [0, count): in a region, statically scheduled, when `parallel`, else
+// on the calling thread with no region (see kParallelThreshold).
+template <typename Body>
+void for_each_index(std::ptrdiff_t count, bool parallel, Body&& body) {
+    if (!parallel) {
+        for (std::ptrdiff_t k = 0; k < count; ++k) {
+            body(k);
+        }
+        return;
+    }
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t k = 0; k < count; ++k) {
+        body(k);
+    }
+}
 
 // log Σ exp(v) over the finite entries; −inf if there is none. The threads compute the terms,
 // and one sums them in order: the same bits for any thread count (per-thread partial sums
@@ -41,11 +59,11 @@ double log_sum_exp(const std::vector<double>& values) {
     }
     const auto count = static_cast<std::ptrdiff_t>(values.size());
     std::vector<double> terms(values.size());
-#pragma omp parallel for schedule(static) if (count > kParallelLoopThreshold)
-    for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const auto exponentiate = [&](std::ptrdiff_t k) {
         terms[static_cast<std::size_t>(k)] =
             std::exp(values[static_cast<std::size_t>(k)] - largest);
-    }
+    };
+    for_each_index(count, count > kParallelLoopThreshold, exponentiate);
     double sum = 0;
     for (const double term : terms) {
         sum += term;
@@ -138,22 +156,20 @@ struct Side {
         // κ_m² of gather_within_radius: (W/(weight_m τ))^{1/α}.
         const double log_kappa_base =
             options.truncation > 0 ? std::log(total_weight) - std::log(options.truncation) : 0;
-#pragma omp parallel if (masses.size() > kParallelLoopThreshold)
-        {
-#pragma omp for schedule(static)
-            for (Eigen::Index i = 0; i < masses.size(); ++i) {
-                log_weight[i] = masses[i] > 0 ? std::log(masses[i] / normalizer) : kMinusInfinity;
-            }
-#pragma omp for schedule(static)
-            for (Eigen::Index k = 0; k < n; ++k) {
-                const std::uint32_t i = active[static_cast<std::size_t>(k)];
-                grid_points_.row(k) = points.row(i);
-                grid_weights_[k] = masses[i] / normalizer;
-                grid_factors_[k] = options.truncation > 0
-                                       ? std::exp((log_kappa_base - log_weight[i]) / options.alpha)
-                                       : 1.0;
-            }
-        }
+        const auto weigh_point = [&](Eigen::Index i) {
+            log_weight[i] = masses[i] > 0 ? std::log(masses[i] / normalizer) : kMinusInfinity;
+        };
+        const auto grid_point = [&](Eigen::Index k) {
+            const std::uint32_t i = active[static_cast<std::size_t>(k)];
+            grid_points_.row(k) = points.row(i);
+            grid_weights_[k] = masses[i] / normalizer;
+            grid_factors_[k] = options.truncation > 0
+                                   ? std::exp((log_kappa_base - log_weight[i]) / options.alpha)
+                                   : 1.0;
+        };
+        const bool parallel = masses.size() > kParallelLoopThreshold;
+        for_each_index(masses.size(), parallel, weigh_point);
+        for_each_index(n, parallel, grid_point);
         if (n == 0) {
             point_at_slot.clear();
             return;
@@ -196,9 +212,7 @@ struct Side {
         }
     }
 
-    [[nodiscard]] bool has_descriptors() const {
-        return descriptors.cols() > 0;
-    }
+    [[nodiscard]] bool has_descriptors() const { return descriptors.cols() > 0; }
 
     // The columns of the other side's descriptor table by this side's grid slots: null when
     // they are the slots themselves.
@@ -419,6 +433,33 @@ KeptTerms weigh_terms(const Side& from, const Side& to, const Parameters& p, Eig
 
 using RowMatrixX4d = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor>;
 
+// Runs query(k, found, term_over_d) for k in [0, count), each thread with buffers of its own,
+// and returns the sum of the term counts it returns: in a region whose threads take `chunk`
+// items at a time when `parallel`, else on the calling thread with no region (see
+// kParallelThreshold). Each item writes results of its own, so the bits are the same either way.
+template <typename Query>
+std::size_t run_queries(std::size_t count, bool parallel, int chunk, Query&& query) {
+    std::size_t pairs = 0;
+    if (!parallel) {
+        Neighbours found;
+        std::vector<double> term_over_d;
+        for (std::size_t k = 0; k < count; ++k) {
+            pairs += query(k, found, term_over_d);
+        }
+        return pairs;
+    }
+#pragma omp parallel reduction(+ : pairs)
+    {
+        Neighbours found;
+        std::vector<double> term_over_d;
+#pragma omp for schedule(dynamic, chunk)
+        for (std::size_t k = 0; k < count; ++k) {
+            pairs += query(k, found, term_over_d);
+        }
+    }
+    return pairs;
+}
+
 // The source side of the sums: f_i over the target, and the moments Σ_j share_ij/d_ij·[1, y_j]
 // with share_ij = b_j d_ij^{−α}/f_i, from which the f-part of Σ_j c_ij and Σ_j c_ij y_j follow
 // once S is known. Nothing per pair is kept.
@@ -436,33 +477,27 @@ SourceSums sum_source(const Side& source, const Side& target, const Parameters& 
     // Queries in the cell order of their own grid: neighbouring queries share their terms
     // in cache.
     const std::size_t queries = source.active.size();
-    std::size_t pairs = 0;
-#pragma omp parallel reduction(+ : pairs) if (count > kParallelThreshold)
-    {
-        Neighbours found;
-        std::vector<double> term_over_d;
-#pragma omp for schedule(static, 128)
-        for (std::size_t slot = 0; slot < queries; ++slot) {
-            const std::uint32_t i = source.point_at_slot[slot];
-            const KeptTerms terms = weigh_terms(source, target, p, i, found, term_over_d);
-            double s0 = 0;
-            double sx = 0;
-            double sy = 0;
-            double sz = 0;
-            for (std::size_t k = 0; k < found.count; ++k) {
-                const double s = term_over_d[k];
-                const Eigen::Vector3d y = grid.position(found.slots[k]);
-                s0 += s;
-                sx += s * y[0];
-                sy += s * y[1];
-                sz += s * y[2];
-            }
-            pairs += found.count;
-            sums.log_f[i] = terms.log_f;
-            sums.moments.row(i) = Eigen::RowVector4d(s0, sx, sy, sz) / terms.sum;
+    // The query of one slot, with a thread's buffers; returns its number of terms.
+    const auto query = [&](std::size_t slot, Neighbours& found, std::vector<double>& term_over_d) {
+        const std::uint32_t i = source.point_at_slot[slot];
+        const KeptTerms terms = weigh_terms(source, target, p, i, found, term_over_d);
+        double s0 = 0;
+        double sx = 0;
+        double sy = 0;
+        double sz = 0;
+        for (std::size_t k = 0; k < found.count; ++k) {
+            const double s = term_over_d[k];
+            const Eigen::Vector3d y = grid.position(found.slots[k]);
+            s0 += s;
+            sx += s * y[0];
+            sy += s * y[1];
+            sz += s * y[2];
         }
-    }
-    sums.pairs = pairs;
+        sums.log_f[i] = terms.log_f;
+        sums.moments.row(i) = Eigen::RowVector4d(s0, sx, sy, sz) / terms.sum;
+        return found.count;
+    };
+    sums.pairs = run_queries(queries, count > kParallelThreshold, 128, query);
     return sums;
 }
 
@@ -500,42 +535,39 @@ TargetSums sum_target(const Side& target, const Side& source, const Parameters& 
     work.coupled.resize(stretches);
     work.log_scale.assign(stretches, kMinusInfinity);
     const std::size_t queries = target.active.size();  // in cell order, as in sum_source
-    std::size_t pairs = 0;
-#pragma omp parallel reduction(+ : pairs) if (stretches > 1)
-    {
-        Neighbours found;
-        std::vector<double> term_over_d;
-#pragma omp for schedule(dynamic, 1)
-        for (std::size_t stretch = 0; stretch < stretches; ++stretch) {
-            RowMatrixX4d& coupled = work.coupled[stretch];
-            coupled.setZero(source_slots, 4);
-            double& log_scale = work.log_scale[stretch];
-            const std::size_t end = queries * (stretch + 1) / stretches;
-            for (std::size_t slot = queries * stretch / stretches; slot < end; ++slot) {
-                const std::uint32_t j = target.point_at_slot[slot];
-                const KeptTerms terms = weigh_terms(target, source, p, j, found, term_over_d);
-                pairs += found.count;
-                sums.log_g[j] = terms.log_f;
-                // b_j/g_j · share_ji/d_ij = exp(log b_j − log g_j − log Σt) · t_i/d_ij.
-                const double log_factor = target.log_weight[j] - terms.log_f - std::log(terms.sum);
-                if (log_scale == kMinusInfinity) {
-                    log_scale = log_factor;
-                } else if (log_factor - log_scale > 300) {
-                    coupled *= std::exp(log_scale - log_factor);  // rare: far larger than before
-                    log_scale = log_factor;
-                }
-                const double factor = std::exp(log_factor - log_scale);
-                const Eigen::RowVector3d y = target.points.row(j);
-                for (std::size_t k = 0; k < found.count; ++k) {
-                    const double c = factor * term_over_d[k];
-                    const auto row = static_cast<Eigen::Index>(found.slots[k]);
-                    coupled(row, 0) += c;
-                    coupled.row(row).tail<3>() += c * y;
-                }
+    // The queries of one stretch, with a thread's buffers; returns their number of terms.
+    const auto stretch_of_queries = [&](std::size_t stretch, Neighbours& found,
+                                        std::vector<double>& term_over_d) {
+        RowMatrixX4d& coupled = work.coupled[stretch];
+        coupled.setZero(source_slots, 4);
+        double& log_scale = work.log_scale[stretch];
+        std::size_t terms_found = 0;
+        const std::size_t end = queries * (stretch + 1) / stretches;
+        for (std::size_t slot = queries * stretch / stretches; slot < end; ++slot) {
+            const std::uint32_t j = target.point_at_slot[slot];
+            const KeptTerms terms = weigh_terms(target, source, p, j, found, term_over_d);
+            terms_found += found.count;
+            sums.log_g[j] = terms.log_f;
+            // b_j/g_j · share_ji/d_ij = exp(log b_j − log g_j − log Σt) · t_i/d_ij.
+            const double log_factor = target.log_weight[j] - terms.log_f - std::log(terms.sum);
+            if (log_scale == kMinusInfinity) {
+                log_scale = log_factor;
+            } else if (log_factor - log_scale > 300) {
+                coupled *= std::exp(log_scale - log_factor);  // rare: far larger than before
+                log_scale = log_factor;
+            }
+            const double factor = std::exp(log_factor - log_scale);
+            const Eigen::RowVector3d y = target.points.row(j);
+            for (std::size_t k = 0; k < found.count; ++k) {
+                const double c = factor * term_over_d[k];
+                const auto row = static_cast<Eigen::Index>(found.slots[k]);
+                coupled(row, 0) += c;
+                coupled.row(row).tail<3>() += c * y;
             }
         }
-    }
-    sums.pairs = pairs;
+        return terms_found;
+    };
+    sums.pairs = run_queries(stretches, stretches > 1, 1, stretch_of_queries);
     return sums;
 }
 
@@ -716,8 +748,7 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
         }  // else a stretch without queries
     }
     RowMatrixX4d accumulated = RowMatrixX4d::Zero(n, 4);  // Σc, Σc·y
-#pragma omp parallel for schedule(static) if (source_slots > kParallelLoopThreshold)
-    for (Eigen::Index slot = 0; slot < source_slots; ++slot) {
+    const auto accumulate = [&](Eigen::Index slot) {
         const std::uint32_t i = source.point_at_slot[static_cast<std::size_t>(slot)];
         Eigen::RowVector4d row =
             covered ? Eigen::RowVector4d(
@@ -730,7 +761,8 @@ PseudoHausdorffEvaluation evaluate_sides(const Side& source, const Side& target,
             }
         }
         accumulated.row(i) = row;
-    }
+    };
+    for_each_index(source_slots, source_slots > kParallelLoopThreshold, accumulate);
     result.coupling = accumulated.col(0);
     result.coupled_target = accumulated.rightCols<3>();
     result.differential = (source.points.array().colwise() * result.coupling.array()).matrix() -

@@ -227,6 +227,41 @@ TEST(PseudoHausdorff, TheValueAndDifferentialAreTheSameOnAnyNumberOfThreads) {
             << k + 1 << " threads";
     }
 }
+
+// Below the parallel thresholds the sums run without a region of their own, as a match's
+// side-by-side flows call them from the threads of a team: there they must neither share
+// their loops with that team (a worksharing loop would bind to it, and hang or skip points)
+// nor round differently. Each thread of a team of two evaluates a small pair, one side of
+// 642 points and one of 2562, in turn as source and target.
+TEST(PseudoHausdorff, SmallSetsGiveTheSameBitsFromEachThreadOfATeam) {
+    const TriangleMesh small = make_limb(3);     // 642 vertices: no region
+    const TriangleMesh large = make_limb(4, 9);  // 2562 vertices: a region of its own
+    const Eigen::VectorXd ms = lumped_masses(small, MassType::Barycentric);
+    const Eigen::VectorXd ml = lumped_masses(large, MassType::Barycentric);
+    const PseudoHausdorffOptions options{.alpha = 8, .epsilon = mean_edge_length(small)};
+    const auto evaluate = [&](int which) {
+        return which == 0 ? pseudo_hausdorff(small.V, ms, large.V, ml, options)
+                          : pseudo_hausdorff(large.V, ml, small.V, ms, options);
+    };
+    const PseudoHausdorffEvaluation alone[2] = {evaluate(0), evaluate(1)};
+    PseudoHausdorffEvaluation in_team[2][2];
+#pragma omp parallel num_threads(2)
+    {
+        const int thread = omp_get_thread_num();
+        for (int which = 0; which < 2; ++which) {
+            in_team[thread][which] = evaluate(which);
+        }
+    }
+    for (int thread = 0; thread < 2; ++thread) {
+        for (int which = 0; which < 2; ++which) {
+            const PseudoHausdorffEvaluation& e = in_team[thread][which];
+            EXPECT_EQ(e.value, alone[which].value) << "thread " << thread << ", pair " << which;
+            EXPECT_EQ(e.pairs, alone[which].pairs) << "thread " << thread << ", pair " << which;
+            EXPECT_TRUE((e.differential.array() == alone[which].differential.array()).all())
+                << "thread " << thread << ", pair " << which;
+        }
+    }
+}
 #endif
 
 TEST(PseudoHausdorff, IsSymmetric) {
