@@ -52,10 +52,17 @@ bool settled(const StoppingRules& rules, const std::vector<double>& energy) {
 FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, Metric& metric,
                     const StoppingRules& rules,
                     const std::function<bool(const FlowProgress&)>& progress,
-                    const StepPolicy& policy, const char* caller) {
+                    const StepPolicy& policy, const char* caller, const StepPreparation& prepare) {
     require_valid_mesh(mesh, caller);
+    const auto update_metric = [&](const TriangleMesh& current) {
+        if (prepare) {
+            metric.update_alongside(current, [&] { prepare(current); });
+        } else {
+            metric.update(current);
+        }
+    };
     if (rules.max_steps > 0) {  // no step, no metric: a factorization costs several steps
-        metric.update(mesh);
+        update_metric(mesh);
     }
     const auto start = std::chrono::steady_clock::now();
     const auto elapsed = [&] {
@@ -80,7 +87,7 @@ FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, Metric& metr
         ProposedStep step;
         try {
             if (result.steps > 0) {
-                metric.update(result.mesh);
+                update_metric(result.mesh);
             }
             step = policy(result.mesh, value);
         } catch (const SolverError& e) {

@@ -45,14 +45,20 @@ struct ProposedStep {
 /// energy, the next step. It may throw SolverError (the flow stops as SolverFailed).
 using StepPolicy = std::function<ProposedStep(const TriangleMesh& current, double value)>;
 
+/// What a step-control policy can do for its next step from the current mesh alone, before
+/// the step, while the metric updates to that mesh (Metric::update_alongside()).
+using StepPreparation = std::function<void(const TriangleMesh& current)>;
+
 /// Runs `policy` from `mesh` until a stopping rule fires, calling `progress` after every step.
 /// The first `metric.update()` happens before the loop, so a mesh the metric refuses is an
 /// exception, not a status; an energy that is not finite at the input or after a step ends the
-/// flow as NonFinite. `caller` names the integrator in messages.
+/// flow as NonFinite. `prepare`, if any, runs alongside each update of the metric, on the mesh
+/// the policy then steps from. `caller` names the integrator in messages.
 FlowResult run_flow(const TriangleMesh& mesh, const Energy& energy, Metric& metric,
                     const StoppingRules& rules,
                     const std::function<bool(const FlowProgress&)>& progress,
-                    const StepPolicy& policy, const char* caller);
+                    const StepPolicy& policy, const char* caller,
+                    const StepPreparation& prepare = {});
 
 /// The fixed-step policy of the Euler integrators: the displacement `displacement` returns for
 /// the current mesh is added whole.

@@ -27,6 +27,10 @@ SparseMetric::SparseMetric(SparseMetric&&) noexcept = default;
 SparseMetric& SparseMetric::operator=(SparseMetric&&) noexcept = default;
 
 void SparseMetric::update(const TriangleMesh& mesh) {
+    update_alongside(mesh, {});
+}
+
+void SparseMetric::update_alongside(const TriangleMesh& mesh, const std::function<void()>& task) {
     detail::require_valid_mesh(mesh, "SparseMetric::update");
     if (mesh.F.rows() == 0) {
         throw InvalidInput("SparseMetric::update: mesh has no faces");
@@ -40,11 +44,11 @@ void SparseMetric::update(const TriangleMesh& mesh) {
     }
     impl_->fixed = fixed_;
     if (impl_->fixed.empty()) {  // nothing to pin: G itself, without a copy
-        impl_->metric_solver.compute(impl_->G, "SparseMetric::update");
+        impl_->metric_solver.compute(impl_->G, "SparseMetric::update", task);
     } else {
         Eigen::SparseMatrix<double> pinned = impl_->G;
         detail::pin_fixed(pinned, impl_->fixed);
-        impl_->metric_solver.compute(pinned, "SparseMetric::update");
+        impl_->metric_solver.compute(pinned, "SparseMetric::update", task);
     }
     impl_->ready = true;
 }

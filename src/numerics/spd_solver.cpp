@@ -105,6 +105,7 @@ void set_mode(CholmodSolver& solver, Factorization factorization, Eigen::Index r
             solver.setMode(Eigen::CholmodSupernodalLLt);
             return;
         case Factorization::ByFlopDensity:
+        case Factorization::ByFlopDensityWide:
             // CHOLMOD's own choice with our switch; a simplicial factor is made LLᵀ, as the
             // other modes make it.
             solver.setMode(Eigen::CholmodAuto);
@@ -155,9 +156,17 @@ struct SpdSolver::Impl {
         // splits: five fairing steps on the noisy tori of the cost curve take 0.77×, 0.79×,
         // 0.80× and 0.73× the time at 1K, 10K, 50K and 200K vertices (docs/benchmarks.md,
         // "Two halves").
-        if (factorization == Factorization::ByFlopDensity) {
+        if (factorization == Factorization::ByFlopDensity ||
+            factorization == Factorization::ByFlopDensityWide) {
             split = std::make_unique<SplitCholesky>();
             if (split->analyze(A, kSupernodalFlopDensity)) {
+                // Wide from the first analysis where the use is known to want it: on the
+                // horse, ten fairing steps take 0.90 times as long as when the second
+                // factorization widens them (one factorization of the narrow kind, one
+                // analysis and a factor's memory fewer).
+                if (factorization == Factorization::ByFlopDensityWide && split->supernodal()) {
+                    wide = split->widen_supernodes();
+                }
                 return;
             }
             split.reset();
@@ -167,17 +176,20 @@ struct SpdSolver::Impl {
         solver.analyzePattern(A);
     }
 
-    // Whether A's numeric factorization succeeded.
-    bool factorize(const Eigen::SparseMatrix<double>& A) {
+    // Whether A's numeric factorization succeeded; `task` runs alongside it (compute()).
+    bool factorize(const Eigen::SparseMatrix<double>& A, const std::function<void()>& task) {
 #ifdef GENFLOW_HAS_CHOLMOD
         if (split) {
             widen_for_few_solves();
             ++factorizations;
             solved_columns = 0;
-            return split->factorize(A);
+            return split->factorize(A, task);
         }
 #endif
         detail::factorize(solver, A);
+        if (task) {
+            task();
+        }
         return solver.info() == Eigen::Success;
     }
 
@@ -227,7 +239,8 @@ const char* SpdSolver::backend() {
 #endif
 }
 
-void SpdSolver::compute(const Eigen::SparseMatrix<double>& A, const char* caller) {
+void SpdSolver::compute(const Eigen::SparseMatrix<double>& A, const char* caller,
+                        const std::function<void()>& task) {
     if (A.rows() != A.cols()) {
         throw SolverError(std::string(caller) + ": matrix is not square");
     }
@@ -254,7 +267,7 @@ void SpdSolver::compute(const Eigen::SparseMatrix<double>& A, const char* caller
                             compressed.innerIndexPtr() + compressed.nonZeros());
         ++analyses_;
     }
-    impl_->factored = impl_->factorize(compressed);
+    impl_->factored = impl_->factorize(compressed, task);
 #ifndef GENFLOW_HAS_CHOLMOD
     // LDLᵀ succeeds on indefinite matrices; a non-positive pivot means A is not SPD.
     if (impl_->factored && (impl_->solver.vectorD().array() <= 0).any()) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <functional>
 #include <memory>
 
 #include "genflow/metrics/factorization.h"
@@ -22,7 +23,11 @@ public:
     /// symbolic analysis when A has the same size and non-zero pattern.
     /// \throws SolverError naming `caller` if A is not numerically positive definite or holds a
     ///         non-finite entry.
-    void compute(const Eigen::SparseMatrix<double>& A, const char* caller);
+    /// `task`, if any, runs meanwhile on the thread of the smaller half of a factorization in
+    /// two halves, once that half is factored, else after the factorization (Metric::
+    /// update_alongside()); what it throws is rethrown after the factorization.
+    void compute(const Eigen::SparseMatrix<double>& A, const char* caller,
+                 const std::function<void()>& task = {});
 
     /// A⁻¹·B for the last factored A (every column in one solve).
     [[nodiscard]] Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
@@ -36,9 +41,9 @@ public:
     /// Whether the last factorization was made in two halves (SplitCholesky; for tests).
     [[nodiscard]] bool split() const;
 
-    /// Whether the factorization in two halves was analysed again with wider supernodes, as it
-    /// is when its first factor's solves did less arithmetic than its factorization (for
-    /// tests).
+    /// Whether the factorization in two halves was analysed with wider supernodes: from the
+    /// first analysis (Factorization::ByFlopDensityWide, supernodal halves), or again when its
+    /// first factor's solves did less arithmetic than its factorization (for tests).
     [[nodiscard]] bool wide_supernodes() const;
 
     /// "CHOLMOD" or "Eigen SimplicialLDLT".

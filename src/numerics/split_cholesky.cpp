@@ -8,6 +8,7 @@
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <array>
+#include <exception>
 #include <utility>
 
 #include "numerics/factor_solves.h"
@@ -339,10 +340,20 @@ bool SplitCholesky::widen_supernodes() {
     return widened[0] && widened[1];
 }
 
-bool SplitCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
+bool SplitCholesky::factorize(const Eigen::SparseMatrix<double>& A,
+                              const std::function<void()>& task) {
     bool factored[2] = {false, false};
+    const int lighter = halves_[0]->common.fl <= halves_[1]->common.fl ? 0 : 1;
+    std::exception_ptr task_failure;
     const auto factor_half = [&](int h) {
         factored[h] = halves_[static_cast<std::size_t>(h)]->factorize(A);
+        if (h == lighter && task) {
+            try {  // an exception may not leave the halves' OpenMP region
+                task();
+            } catch (...) {
+                task_failure = std::current_exception();
+            }
+        }
     };
     // A simplicial factorization opens no region, and a team already running starts sooner than
     // a new thread.
@@ -350,6 +361,9 @@ bool SplitCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
         for_both_halves_on_own_threads(factor_half);
     } else {
         for_both_halves(factor_half);
+    }
+    if (task_failure) {
+        std::rethrow_exception(task_failure);
     }
     if (!factored[0] || !factored[1]) {
         return false;

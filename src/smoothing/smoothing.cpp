@@ -68,6 +68,14 @@ public:
             updated_ = true;
         }
     }
+    void update_alongside(const TriangleMesh& mesh, const std::function<void()>& task) override {
+        if (!updated_) {
+            metric_.update_alongside(mesh, task);
+            updated_ = true;
+        } else {
+            task();
+        }
+    }
     [[nodiscard]] VertexField gradient(const VertexField& dEdX) const override {
         return metric_.gradient(dEdX);
     }
@@ -101,10 +109,19 @@ FlowResult area_flow(const TriangleMesh& mesh, const SmoothingOptions& options, 
 
 }  // namespace
 
+namespace {
+
 // A smoothing flow has the machine to itself: factorizations in two halves side by side, each
 // supernodal where its factor is dense enough for the BLAS to pay (twice as fast as simplicial
 // on the 48K horse), simplicial below (docs/benchmarks.md, "By flop density", "Two halves").
-constexpr Factorization kSmoothingFactorization = Factorization::ByFlopDensity;
+// A metric updated at every step is factored for each step's solve or few, so with wide
+// supernodes from the first analysis; a frozen one, factored once and solved at every step,
+// with narrow ones.
+Factorization smoothing_factorization(const SmoothingOptions& options) {
+    return options.freeze_metric ? Factorization::ByFlopDensity : Factorization::ByFlopDensityWide;
+}
+
+}  // namespace
 
 FlowResult mean_curvature_flow(const TriangleMesh& mesh, const SmoothingOptions& options) {
     const double h = prepare(mesh, options, "mean_curvature_flow");
@@ -132,8 +149,8 @@ FlowResult mean_curvature_flow(const TriangleMesh& mesh, const SmoothingOptions&
 FlowResult implicit_fairing(const TriangleMesh& mesh, const SmoothingOptions& options) {
     const double h = prepare(mesh, options, "implicit_fairing");
     const double time_step = options.time_step * h * h;
-    H1Metric metric(
-        {.lambda = metric_lambda(options, h, time_step), .factorization = kSmoothingFactorization});
+    H1Metric metric({.lambda = metric_lambda(options, h, time_step),
+                     .factorization = smoothing_factorization(options)});
     return area_flow(mesh, options, metric, time_step);
 }
 
@@ -145,7 +162,7 @@ FlowResult higher_order_fairing(const TriangleMesh& mesh, const SmoothingOptions
     const double time_step = options.time_step * h * h;
     H2Metric metric({.lambda = metric_lambda(options, h, time_step),
                      .mu = options.mu * h * h * h * h,
-                     .factorization = kSmoothingFactorization});
+                     .factorization = smoothing_factorization(options)});
     return area_flow(mesh, options, metric, time_step);
 }
 
@@ -160,7 +177,7 @@ FlowResult volume_controlled_fairing(const TriangleMesh& mesh, const SmoothingOp
     const double h = prepare(mesh, options, "volume_controlled_fairing");
     VolumeControlledMetric metric({.lambda = options.volume_lambda,
                                    .tolerance = kFairingSolveTolerance,
-                                   .factorization = kSmoothingFactorization});
+                                   .factorization = smoothing_factorization(options)});
     return area_flow(mesh, options, metric, options.time_step * h * h, Integrator::Implicit);
 }
 

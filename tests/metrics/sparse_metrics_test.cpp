@@ -91,6 +91,20 @@ TEST_P(SparseMetrics, ReuseTheSymbolicAnalysisWhileThePatternStays) {
     EXPECT_EQ(metric->symbolic_analyses(), 2);  // once for G, once for G + dt·A
 }
 
+// update_alongside() runs its task once and factors as update() does, to the bit.
+TEST_P(SparseMetrics, UpdateAlongsideRunsTheTaskAndFactorsAsUpdateDoes) {
+    const TriangleMesh mesh = test::noisy_icosphere(3);
+    auto metric = GetParam().make(mean_edge_length(mesh));
+    const VertexField differential = SurfaceAreaEnergy{}.differential(mesh);
+    metric->update(mesh);
+    const VertexField gradient = metric->gradient(differential);
+    int runs = 0;
+    metric->update_alongside(mesh, [&runs] { ++runs; });
+    EXPECT_EQ(runs, 1);
+    EXPECT_EQ(metric->gradient(differential), gradient);
+    EXPECT_THROW(metric->update_alongside(mesh, [] { throw InvalidInput("task"); }), InvalidInput);
+}
+
 TEST_P(SparseMetrics, RefuseUseBeforeUpdateAndWrongSizes) {
     auto metric = GetParam().make(0.1);
     EXPECT_THROW((void)metric->gradient(VertexField::Zero(3, 3)), InvalidInput);
@@ -114,6 +128,11 @@ INSTANTIATE_TEST_SUITE_P(
         MetricCase{"H1",
                    [](double h) {
                        return std::make_unique<H1Metric>(SobolevOptions{.lambda = 4 * h * h});
+                   }},
+        MetricCase{"H1InHalves",
+                   [](double h) {
+                       return std::make_unique<H1Metric>(SobolevOptions{
+                           .lambda = 4 * h * h, .factorization = Factorization::ByFlopDensityWide});
                    }},
         MetricCase{"H1Full",
                    [](double h) {

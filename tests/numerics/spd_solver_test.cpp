@@ -168,6 +168,47 @@ TEST(SpdSolver, WidensTheSupernodesOfAFactorWhoseSolvesCostLessThanItsFactorizat
     }
 }
 
+// ByFlopDensityWide gives supernodal halves their wider supernodes from the first analysis,
+// whatever the solves; simplicial halves have none. Both solve as ByFlopDensity's factors do,
+// with one analysis.
+TEST(SpdSolver, WidensTheSupernodesFromTheFirstAnalysisWhenAskedTo) {
+    const bool cholmod = std::string(detail::SpdSolver::backend()) == "CHOLMOD";
+    struct Case {
+        Eigen::SparseMatrix<double> A;
+        bool widened;
+    };
+    for (const Case& c : {Case{test::sphere_h1_matrix(5, 1), true},      // 143 flops an entry
+                          Case{test::sphere_h1_matrix(4, 1), false}}) {  // simplicial halves
+        const Eigen::MatrixXd B = test::random_matrix(c.A.rows(), 3, 14);
+        detail::SpdSolver narrow(Factorization::ByFlopDensity);
+        detail::SpdSolver wide(Factorization::ByFlopDensityWide);
+        narrow.compute(c.A, "test");
+        wide.compute(c.A, "test");
+        EXPECT_EQ(wide.wide_supernodes(), cholmod && c.widened) << c.A.rows();
+        for (int step = 1; step <= 2; ++step) {
+            wide.compute(c.A, "test");
+            EXPECT_LT((wide.solve(B) - narrow.solve(B)).norm(), 1e-12 * narrow.solve(B).norm());
+        }
+        EXPECT_EQ(wide.analyses(), 1);
+    }
+}
+
+// A task given to compute() runs once, alongside the factorization in two halves or after a
+// whole one, and what it throws comes out of compute().
+TEST(SpdSolver, RunsATaskAlongsideTheFactorization) {
+    for (const Factorization factorization :
+         {Factorization::BySize, Factorization::ByFlopDensity, Factorization::ByFlopDensityWide}) {
+        const Eigen::SparseMatrix<double> A = test::sphere_h1_matrix(4, 1);
+        detail::SpdSolver solver(factorization);
+        int runs = 0;
+        solver.compute(A, "test", [&runs] { ++runs; });
+        EXPECT_EQ(runs, 1);
+        const Eigen::MatrixXd B = test::random_matrix(A.rows(), 3, 15);
+        EXPECT_LT((A * solver.solve(B) - B).norm(), 1e-12 * B.norm());
+        EXPECT_THROW(solver.compute(A, "test", [] { throw InvalidInput("task"); }), InvalidInput);
+    }
+}
+
 // Called at the top level, the factorization holds CHOLMOD's own thread teams to one thread;
 // inside a parallel region (a matcher's flows side by side) it runs as it is: the same bits.
 TEST(SpdSolver, FactorsToTheSameBitsInsideAndOutsideAParallelRegion) {

@@ -11,6 +11,7 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "genflow/exceptions.h"
 #include "numerics/spd_solver.h"
 #include "support/test_meshes.h"
 
@@ -99,6 +100,26 @@ TEST(SplitCholesky, SolvesAsBeforeWithWiderSupernodes) {
     const Eigen::MatrixXd wide = split.solve(B);
     EXPECT_LT((A * wide - B).norm(), 1e-12 * B.norm());
     EXPECT_LT((wide - narrow).norm(), 1e-12 * narrow.norm());
+}
+
+// A task given to the factorization runs once, on the thread of one half, and changes nothing
+// of the factor; what it throws comes out of factorize(), and the next factorization works.
+TEST(SplitCholesky, RunsATaskAlongsideItsHalvesAndPassesOnWhatItThrows) {
+    const Eigen::SparseMatrix<double> A = test::sphere_h1_matrix(5);
+    const Eigen::MatrixXd B = test::random_matrix(A.rows(), 3, 13);
+    for (const double supernodal_switch : {kAlwaysSupernodal, kNeverSupernodal}) {
+        detail::SplitCholesky split;
+        ASSERT_TRUE(split.analyze(A, supernodal_switch));
+        ASSERT_TRUE(split.factorize(A));
+        const Eigen::MatrixXd alone = split.solve(B);
+        int runs = 0;
+        ASSERT_TRUE(split.factorize(A, [&runs] { ++runs; }));
+        EXPECT_EQ(runs, 1);
+        EXPECT_EQ(split.solve(B), alone) << "supernodal switch " << supernodal_switch;
+        EXPECT_THROW((void)split.factorize(A, [] { throw InvalidInput("task"); }), InvalidInput);
+        ASSERT_TRUE(split.factorize(A));
+        EXPECT_EQ(split.solve(B), alone) << "supernodal switch " << supernodal_switch;
+    }
 }
 
 // On a path, with d on the diagonal at the separator and 2 elsewhere, each half's Schur

@@ -22,6 +22,14 @@ enum class Factorization {
     /// separator, its two halves are factored so, side by side on two threads, and the separator
     /// densely (docs/formulas.md §10): on the 48K horse 32 instead of 46 ms.
     ByFlopDensity,
+    /// ByFlopDensity for a metric factored anew before each solve or few (a flow that updates
+    /// it at every step, not a frozen one): supernodal halves get wider supernodes from the
+    /// first analysis, which make a factorization faster and its solves slower (the horse's
+    /// halves 31.5–33.1 → 25.3–25.8 ms, a three-column solve 4.4–4.6 → 6.8–7.0 ms).
+    /// ByFlopDensity widens them at the second factorization when the first one's solves did
+    /// less arithmetic than it; this spares that factorization of the narrow kind and the
+    /// analysis again.
+    ByFlopDensityWide,
 };
 
 }  // namespace genflow

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <functional>
 #include <vector>
 
 #include "genflow/mesh.h"
@@ -33,6 +34,16 @@ public:
     ///                      has the wrong size.
     /// \throws SolverError  if G is not numerically positive definite.
     virtual void update(const TriangleMesh& mesh) = 0;
+
+    /// update(mesh), with `task` run meanwhile on a thread the update leaves idle where it has
+    /// one (a factorization in two unequal halves: the smaller one's thread, once that half is
+    /// factored), else after it. A flow computes the energy's differential so, which needs the
+    /// mesh only. `task` must not use this metric; what it throws is rethrown after the update.
+    /// \throws as update().
+    virtual void update_alongside(const TriangleMesh& mesh, const std::function<void()>& task) {
+        update(mesh);
+        task();
+    }
 
     /// G⁻¹·dEdX, the gradient of an energy in this metric (eq. 8).
     /// \param dEdX  #V×3 differential of the energy at the mesh last given to `update()`.

@@ -30,6 +30,7 @@ public:
     SparseMetric& operator=(SparseMetric&&) noexcept;
 
     void update(const TriangleMesh& mesh) final;
+    void update_alongside(const TriangleMesh& mesh, const std::function<void()>& task) final;
     [[nodiscard]] VertexField gradient(const VertexField& dEdX) const final;
     [[nodiscard]] VertexField apply(const VertexField& U) const final;
     [[nodiscard]] VertexField shifted_gradient(const Eigen::SparseMatrix<double>& A, double dt,
