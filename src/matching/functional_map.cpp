@@ -3,46 +3,8 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
-#include <limits>
 
 namespace genflow::detail {
-
-std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from, const Eigen::MatrixXd& to) {
-    // |a − b|² = |b|² − 2 a·b + |a|², the last the same for every b, by tiles of rows and
-    // columns: a tile's products stay in the cache while their minima are taken, and its
-    // buffer is small enough to be reused from the heap (one distance matrix of a block of rows
-    // cost as much in page faults as the products). The column tiles are multiples of every
-    // SIMD width, so each product is computed as in one whole product.
-    constexpr Eigen::Index kRowTile = 1024;
-    constexpr Eigen::Index kColumnTile = 256;
-    const Eigen::RowVectorXd to_squared = to.rowwise().squaredNorm().transpose();
-    std::vector<Eigen::Index> nearest(static_cast<std::size_t>(from.rows()), 0);
-    Eigen::MatrixXd products(std::min(kRowTile, from.rows()), std::min(kColumnTile, to.rows()));
-    for (Eigen::Index begin = 0; begin < from.rows(); begin += kRowTile) {
-        const Eigen::Index rows = std::min(kRowTile, from.rows() - begin);
-        Eigen::VectorXd smallest =
-            Eigen::VectorXd::Constant(rows, std::numeric_limits<double>::infinity());
-        for (Eigen::Index first = 0; first < to.rows(); first += kColumnTile) {
-            const Eigen::Index columns = std::min(kColumnTile, to.rows() - first);
-            auto distance = products.topLeftCorner(rows, columns);
-            distance.noalias() =
-                -2 * from.middleRows(begin, rows) * to.middleRows(first, columns).transpose();
-            // The minima of all rows at once, column by column: the matrix is stored by
-            // columns, and a walk along a row would touch a new cache line at every entry. The
-            // first smallest entry wins, as minCoeff()'s does.
-            for (Eigen::Index j = 0; j < columns; ++j) {
-                for (Eigen::Index i = 0; i < rows; ++i) {
-                    const double d = distance(i, j) + to_squared(first + j);
-                    if (d < smallest[i]) {
-                        smallest[i] = d;
-                        nearest[static_cast<std::size_t>(begin + i)] = first + j;
-                    }
-                }
-            }
-        }
-    }
-    return nearest;
-}
 
 Eigen::MatrixXd fitted_functional_map(const Eigen::MatrixXd& from_functions,
                                       const Eigen::VectorXd& from_masses,

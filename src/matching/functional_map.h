@@ -7,12 +7,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace genflow::detail {
+#include "matching/nearest_rows.h"
 
-/// For each row of `from`, the nearest row of `to` (brute force, by blocks of matrix products:
-/// a few thousand rows of a few dozen columns).
-[[nodiscard]] std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from,
-                                                     const Eigen::MatrixXd& to);
+namespace genflow::detail {
 
 /// The functional map C (size × size) fitted to a correspondence π (row of `from_functions` ->
 /// row of `to_functions`) in the M-weighted least-squares sense: ψ(π(i)) ≈ φ(i) C, which is
