@@ -2,7 +2,6 @@
 #include "matching/nearest_rows.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -120,6 +119,75 @@ bool any_within(const Eigen::MatrixXd& block, const RowBlocks& columns, Eigen::I
     return false;
 }
 
+// The rows of `to` in blocks (RowBlocks), gathered block after block for the products, with
+// their squared norms.
+struct Candidates {
+    RowBlocks blocks;
+    Eigen::MatrixXd rows;        // to's rows in blocks.order
+    Eigen::RowVectorXd squared;  // |b|² by to's own row index
+    double rounding = 0;         // the margin of a skipped block (see nearest_rows())
+};
+
+// The nearest rows so far of one block of `from`: the smallest |b|² − 2a·b and its row of `to`
+// (to.rows() while none).
+struct Found {
+    Eigen::VectorXd smallest;
+    std::vector<Eigen::Index> row;
+};
+
+// Takes the products of `block` with the candidates' block l into `found`, column by column
+// (the products are stored by columns); of equal values the first row of `to` wins, as in the
+// whole product.
+void take_block(const Eigen::MatrixXd& block, const Candidates& candidates, Eigen::Index l,
+                Eigen::MatrixXd& products, Found& found) {
+    const RowBlocks& blocks = candidates.blocks;
+    products.noalias() =
+        -2 * block * candidates.rows.middleRows(blocks.begin(l), blocks.size(l)).transpose();
+    for (Eigen::Index c = 0; c < products.cols(); ++c) {
+        const Eigen::Index j = blocks.order[static_cast<std::size_t>(blocks.begin(l) + c)];
+        for (Eigen::Index i = 0; i < products.rows(); ++i) {
+            const double d = products(i, c) + candidates.squared(j);
+            auto& row = found.row[static_cast<std::size_t>(i)];
+            if (d < found.smallest[i] || (d == found.smallest[i] && j < row)) {
+                found.smallest[i] = d;
+                row = j;
+            }
+        }
+    }
+}
+
+// The nearest rows of `block` (block k of `rows`): the candidates' blocks in order of their
+// boxes' distance from block k's box, each taken unless no row of the block can find a nearer
+// row in it. |a − b|² = |b|² − 2a·b + |a|² is at least the boxes' distance for every pair of
+// two blocks, and at least a row's distance to a box for each row in it.
+Found nearest_of_block(const Eigen::MatrixXd& block, const RowBlocks& rows, Eigen::Index k,
+                       const Candidates& candidates, Eigen::MatrixXd& products) {
+    const RowBlocks& blocks = candidates.blocks;
+    std::vector<double> lower_bound(static_cast<std::size_t>(blocks.count()));
+    for (Eigen::Index l = 0; l < blocks.count(); ++l) {
+        lower_bound[static_cast<std::size_t>(l)] = box_distance2(rows, k, blocks, l);
+    }
+    std::vector<Eigen::Index> by_distance(lower_bound.size());
+    std::iota(by_distance.begin(), by_distance.end(), Eigen::Index{0});
+    std::stable_sort(by_distance.begin(), by_distance.end(), [&](Eigen::Index a, Eigen::Index b) {
+        return lower_bound[static_cast<std::size_t>(a)] < lower_bound[static_cast<std::size_t>(b)];
+    });
+    const Eigen::VectorXd block_squared = block.rowwise().squaredNorm();
+    Found found{Eigen::VectorXd::Constant(block.rows(), std::numeric_limits<double>::infinity()),
+                std::vector<Eigen::Index>(static_cast<std::size_t>(block.rows()),
+                                          candidates.squared.size())};
+    for (const Eigen::Index l : by_distance) {
+        const Eigen::VectorXd reach = found.smallest + block_squared;
+        if (lower_bound[static_cast<std::size_t>(l)] > reach.maxCoeff() + candidates.rounding) {
+            break;  // and every block after it
+        }
+        if (any_within(block, blocks, l, reach, candidates.rounding)) {
+            take_block(block, candidates, l, products, found);
+        }
+    }
+    return found;
+}
+
 }  // namespace
 
 std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from, const Eigen::MatrixXd& to) {
@@ -127,69 +195,27 @@ std::vector<Eigen::Index> nearest_rows(const Eigen::MatrixXd& from, const Eigen:
     if (from.rows() == 0 || to.rows() == 0) {
         return nearest;
     }
-    const Eigen::RowVectorXd to_squared = to.rowwise().squaredNorm().transpose();
-    const RowBlocks columns = row_blocks(to, to.rows() / kColumnMultiple * kColumnMultiple,
-                                         kColumnBlock, kColumnMultiple);
-    const RowBlocks rows = row_blocks(from, from.rows(), kRowBlock, 1);
-    const Eigen::MatrixXd to_in_blocks = to(columns.order, Eigen::all);
+    Candidates candidates;
+    candidates.blocks = row_blocks(to, to.rows() / kColumnMultiple * kColumnMultiple, kColumnBlock,
+                                   kColumnMultiple);
+    candidates.rows = to(candidates.blocks.order, Eigen::all);
+    candidates.squared = to.rowwise().squaredNorm().transpose();
     // The products' rounding, |b|² − 2a·b against its exact value, stays far below this (about
-    // k ε (|a|² + |b|²) for k columns); a block is skipped only when even that cannot bring it
-    // to a row already found.
-    const double rounding =
-        1e-10 * (from.rowwise().squaredNorm().maxCoeff() + to_squared.maxCoeff());
-    std::vector<Eigen::Index> by_distance(static_cast<std::size_t>(columns.count()));
-    std::vector<double> lower_bound(by_distance.size());
+    // k ε (|a|² + |b|²) for k columns): a block is skipped only when even that could not bring
+    // a row of it to the nearest found.
+    candidates.rounding =
+        1e-10 * (from.rowwise().squaredNorm().maxCoeff() + candidates.squared.maxCoeff());
+    const RowBlocks rows = row_blocks(from, from.rows(), kRowBlock, 1);
     Eigen::MatrixXd block;
     Eigen::MatrixXd products;
     for (Eigen::Index k = 0; k < rows.count(); ++k) {
-        block.resize(rows.size(k), from.cols());
+        const auto members = Eigen::Map<const Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1>>(
+            rows.order.data() + rows.begin(k), rows.size(k));
+        block = from(members, Eigen::all);
+        const Found found = nearest_of_block(block, rows, k, candidates, products);
         for (Eigen::Index i = 0; i < block.rows(); ++i) {
-            block.row(i) = from.row(rows.order[static_cast<std::size_t>(rows.begin(k) + i)]);
-        }
-        const Eigen::VectorXd block_squared = block.rowwise().squaredNorm();
-        for (Eigen::Index l = 0; l < columns.count(); ++l) {
-            lower_bound[static_cast<std::size_t>(l)] = box_distance2(rows, k, columns, l);
-        }
-        std::iota(by_distance.begin(), by_distance.end(), Eigen::Index{0});
-        std::stable_sort(by_distance.begin(), by_distance.end(),
-                         [&](Eigen::Index a, Eigen::Index b) {
-                             return lower_bound[static_cast<std::size_t>(a)] <
-                                    lower_bound[static_cast<std::size_t>(b)];
-                         });
-        Eigen::VectorXd smallest =
-            Eigen::VectorXd::Constant(block.rows(), std::numeric_limits<double>::infinity());
-        std::vector<Eigen::Index> chosen(static_cast<std::size_t>(block.rows()), to.rows());
-        for (const Eigen::Index l : by_distance) {
-            // |a − b|² = |b|² − 2a·b + |a|² is at least the boxes' distance for every pair of the
-            // blocks, and at least a row's distance to the box of `to`'s for each of its rows.
-            const Eigen::VectorXd reach = smallest + block_squared;
-            if (lower_bound[static_cast<std::size_t>(l)] > reach.maxCoeff() + rounding) {
-                break;  // and every block after it
-            }
-            if (!any_within(block, columns, l, reach, rounding)) {
-                continue;
-            }
-            products.noalias() =
-                -2 * block * to_in_blocks.middleRows(columns.begin(l), columns.size(l)).transpose();
-            // The minima of all rows at once, column by column (the products are stored by
-            // columns); of equal ones, the first row of `to` wins, as in the whole product.
-            for (Eigen::Index c = 0; c < products.cols(); ++c) {
-                const Eigen::Index j =
-                    columns.order[static_cast<std::size_t>(columns.begin(l) + c)];
-                for (Eigen::Index i = 0; i < products.rows(); ++i) {
-                    const double d = products(i, c) + to_squared(j);
-                    if (d < smallest[i] ||
-                        (d == smallest[i] && j < chosen[static_cast<std::size_t>(i)])) {
-                        smallest[i] = d;
-                        chosen[static_cast<std::size_t>(i)] = j;
-                    }
-                }
-            }
-        }
-        for (Eigen::Index i = 0; i < block.rows(); ++i) {
-            const Eigen::Index row = rows.order[static_cast<std::size_t>(rows.begin(k) + i)];
-            const Eigen::Index found = chosen[static_cast<std::size_t>(i)];
-            nearest[static_cast<std::size_t>(row)] = found < to.rows() ? found : 0;
+            const Eigen::Index row = found.row[static_cast<std::size_t>(i)];
+            nearest[static_cast<std::size_t>(members[i])] = row < to.rows() ? row : 0;
         }
     }
     return nearest;
