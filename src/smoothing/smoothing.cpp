@@ -72,7 +72,7 @@ public:
         if (!updated_) {
             metric_.update_alongside(mesh, task);
             updated_ = true;
-        } else {
+        } else if (task) {
             task();
         }
     }

@@ -103,6 +103,8 @@ TEST_P(SparseMetrics, UpdateAlongsideRunsTheTaskAndFactorsAsUpdateDoes) {
     EXPECT_EQ(runs, 1);
     EXPECT_EQ(metric->gradient(differential), gradient);
     EXPECT_THROW(metric->update_alongside(mesh, [] { throw InvalidInput("task"); }), InvalidInput);
+    metric->update_alongside(mesh, {});  // no task
+    EXPECT_EQ(metric->gradient(differential), gradient);
 }
 
 TEST_P(SparseMetrics, RefuseUseBeforeUpdateAndWrongSizes) {

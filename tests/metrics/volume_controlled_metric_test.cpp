@@ -64,6 +64,22 @@ TEST(VolumeControlledMetric, GradientInvertsApply) {
     EXPECT_LT(test::relative_error(metric.apply(metric.gradient(U)), U), 1e-8);
 }
 
+// A metric without halves to factor runs update_alongside()'s task after the update: once, or
+// not at all when there is none, and the update is update()'s.
+TEST(VolumeControlledMetric, UpdateAlongsideRunsTheTaskAfterTheUpdate) {
+    const TriangleMesh mesh = test::noisy_torus(16, 8, 0.2);
+    const VertexField U = test::random_matrix(mesh.V.rows(), 3, 2);
+    VolumeControlledMetric metric({.lambda = 0.05});
+    metric.update(mesh);
+    const VertexField gradient = metric.gradient(U);
+    int runs = 0;
+    metric.update_alongside(mesh, [&runs] { ++runs; });
+    EXPECT_EQ(runs, 1);
+    EXPECT_EQ(metric.gradient(U), gradient);
+    metric.update_alongside(mesh, {});
+    EXPECT_EQ(metric.gradient(U), gradient);
+}
+
 TEST(VolumeControlledMetric, ProjectionIsDSelfAdjointWithSpectrumInZeroOne) {
     const TriangleMesh mesh = test::noisy_icosphere(1, 0.2);
     VolumeControlledMetric metric;

@@ -38,11 +38,14 @@ public:
     /// update(mesh), with `task` run meanwhile on a thread the update leaves idle where it has
     /// one (a factorization in two unequal halves: the smaller one's thread, once that half is
     /// factored), else after it. A flow computes the energy's differential so, which needs the
-    /// mesh only. `task` must not use this metric; what it throws is rethrown after the update.
+    /// mesh only. `task` (none if empty) must not use this metric; what it throws is rethrown
+    /// after the update.
     /// \throws as update().
     virtual void update_alongside(const TriangleMesh& mesh, const std::function<void()>& task) {
         update(mesh);
-        task();
+        if (task) {
+            task();
+        }
     }
 
     /// G⁻¹·dEdX, the gradient of an energy in this metric (eq. 8).
