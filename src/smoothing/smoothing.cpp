@@ -107,10 +107,6 @@ FlowResult area_flow(const TriangleMesh& mesh, const SmoothingOptions& options, 
                : implicit_euler(mesh, SurfaceAreaEnergy{}, used, flow);
 }
 
-}  // namespace
-
-namespace {
-
 // A smoothing flow has the machine to itself: factorizations in two halves side by side, each
 // supernodal where its factor is dense enough for the BLAS to pay (twice as fast as simplicial
 // on the 48K horse), simplicial below (docs/benchmarks.md, "By flop density", "Two halves").
