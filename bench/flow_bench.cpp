@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Time per implicit-fairing step on the 48K-vertex horse ($GENFLOW_DATA/smoothing/horse_noisy.ply,
 // or a generated 50K-vertex torus without the data): the first step (symbolic analysis +
-// factorization + solve) and later steps separately, through the library (whichever backend it
+// factorization + solve) and later steps separately (also with the differential computed
+// alongside the factorization), through the library (whichever backend it
 // was built with) and with CHOLMOD and Eigen's SimplicialLDLT side by side; one H1 step at the
 // size of a match's coarsest level. Also the rebuild of
 // the quasi-articulated metric (docs/formulas.md §6) at every flow step, on a generated 41K-vertex
@@ -71,6 +72,20 @@ void BM_FairingStepLater(benchmark::State& state) {
     for (auto _ : state) {
         metric.update(horse());  // same pattern: numeric factorization only
         benchmark::DoNotOptimize(metric.gradient(area.differential(horse())));
+    }
+}
+
+// A later step with the area's differential computed alongside the factorization
+// (Metric::update_alongside(), as the fairing flows take their steps): against
+// BM_FairingStepLater, what the thread left idle by the lighter half gives back.
+void BM_FairingStepLaterAlongside(benchmark::State& state) {
+    const genflow::SurfaceAreaEnergy area;
+    genflow::H1Metric metric({.lambda = dt()});
+    metric.update(horse());
+    Eigen::MatrixX3d differential;
+    for (auto _ : state) {
+        metric.update_alongside(horse(), [&] { differential = area.differential(horse()); });
+        benchmark::DoNotOptimize(metric.gradient(differential));
     }
 }
 
@@ -194,6 +209,7 @@ void BM_H1StepCoarse(benchmark::State& state) {
 
 BENCHMARK(BM_FairingStepFirst)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingStepLater)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FairingStepLaterAlongside)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingAssembleOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingFiveStepsCurve)
     ->Apply(genflow::bench::cost_curve_sizes)

@@ -7,16 +7,19 @@
 // reports the mean correspondence error over the target's bounding-box diagonal, so that a
 // faster setting that matches worse shows in the same table. Also the time of the evaluation
 // (correspondence_error()) of a match gone wrong, and of the embedding of a level in the next
-// coarser one, along the surface and in the closest face of all. The "TemplateCached" variants
+// coarser one, along the surface and in the closest face of all; and of ZoomOut's nearest-row
+// search in two spheres' spectral embeddings. The "TemplateCached" variants
 // match with the template's analyses kept from an earlier match of it (TemplateCache, as
 // `genflow batch` runs every target after the first): their time less the plain one's is what a
 // batch saves per target.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <numeric>
@@ -31,7 +34,9 @@
 #include "genflow/matching/match.h"
 #include "genflow/matching/multiresolution.h"
 #include "genflow/mesh/primitives.h"
+#include "genflow/operators/laplacian_eigenbasis.h"
 #include "genflow/operators/mesh_size.h"
+#include "matching/functional_map.h"
 #include "matching/intrinsic_start.h"
 
 namespace {
@@ -221,8 +226,65 @@ void BM_EmbedLevelInTheClosestFace(benchmark::State& state) {
     state.counters["vertices"] = static_cast<double>(fine.V.rows());
 }
 
+// ZoomOut's nearest-row search (detail::nearest_rows()) in the embeddings of two noisy 10K
+// spheres, the first's functions through an orthogonal map, both weighted as ZoomOut weighs
+// them, at `size` functions; the whole product −2·from·toᵀ it
+// replaces is BM_WholeProductZoomOutEmbedding.
+struct ZoomOutEmbeddings {
+    Eigen::MatrixXd from, to;
+};
+
+const ZoomOutEmbeddings& zoom_out_embeddings(Eigen::Index size) {
+    static const auto bases = [] {
+        const genflow::TriangleMesh sphere = genflow::make_icosphere(5);
+        const double noise = 0.1 * genflow::mean_edge_length(sphere);
+        return std::pair{genflow::laplacian_eigenbasis(genflow::add_noise(sphere, noise, 1), 61),
+                         genflow::laplacian_eigenbasis(genflow::add_noise(sphere, noise, 2), 61)};
+    }();
+    static std::map<Eigen::Index, ZoomOutEmbeddings> embeddings;
+    auto [it, inserted] = embeddings.try_emplace(size);
+    if (inserted) {
+        const Eigen::RowVectorXd weights =
+            genflow::detail::embedding_weights(bases.second.values.segment(1, size));
+        std::mt19937 random(3);
+        std::normal_distribution<double> normal;
+        const Eigen::MatrixXd turn =
+            Eigen::HouseholderQR<Eigen::MatrixXd>(Eigen::MatrixXd::NullaryExpr(size, size, [&] {
+                return normal(random);
+            })).householderQ();
+        it->second.from = bases.first.functions.middleCols(1, size) * turn * weights.asDiagonal();
+        it->second.to = bases.second.functions.middleCols(1, size) * weights.asDiagonal();
+    }
+    return it->second;
+}
+
+void BM_NearestRowsZoomOutEmbedding(benchmark::State& state) {
+    const ZoomOutEmbeddings& e = zoom_out_embeddings(state.range(0));
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(genflow::detail::nearest_rows(e.from, e.to).data());
+    }
+    state.counters["rows"] = static_cast<double>(e.from.rows());
+}
+
+// The whole product and its row minima, as the search did before it skipped blocks.
+void BM_WholeProductZoomOutEmbedding(benchmark::State& state) {
+    const ZoomOutEmbeddings& e = zoom_out_embeddings(state.range(0));
+    for (auto _ : state) {
+        const Eigen::MatrixXd distances =
+            (-2 * e.from * e.to.transpose()).rowwise() + e.to.rowwise().squaredNorm().transpose();
+        Eigen::VectorXd smallest = distances.rowwise().minCoeff();
+        benchmark::DoNotOptimize(smallest.data());
+    }
+}
+
 }  // namespace
 
+BENCHMARK(BM_NearestRowsZoomOutEmbedding)->Arg(10)->Arg(30)->Arg(60)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WholeProductZoomOutEmbedding)
+    ->Arg(10)
+    ->Arg(30)
+    ->Arg(60)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmbedLevelAlongTheSurface)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmbedLevelInTheClosestFace)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IntrinsicStartTOSCAMichaelKneeling)->Unit(benchmark::kMillisecond)->Iterations(3);

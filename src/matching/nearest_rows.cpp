@@ -95,24 +95,19 @@ RowBlocks row_blocks(const Eigen::MatrixXd& points, Eigen::Index tree_rows, Eige
     return blocks;
 }
 
-// The squared distance between two boxes, rounded down a little: no pair of their points is
-// closer.
-double box_distance2(const RowBlocks& a, Eigen::Index k, const RowBlocks& b, Eigen::Index l) {
-    const Eigen::RowVectorXd gap =
-        (a.low.row(k) - b.high.row(l)).cwiseMax(b.low.row(l) - a.high.row(k)).cwiseMax(0.0);
-    return gap.squaredNorm() * (1 - 1e-12);
+// The squared distance between the boxes [low_a, high_a] and [low_b, high_b], rounded down a
+// little: no pair of their points is closer. A row is the box whose corners are both the row.
+template <typename LowA, typename HighA, typename LowB, typename HighB>
+double box_gap2(const LowA& low_a, const HighA& high_a, const LowB& low_b, const HighB& high_b) {
+    return (low_a - high_b).cwiseMax(low_b - high_a).cwiseMax(0.0).squaredNorm() * (1 - 1e-12);
 }
 
-// Whether any row a of `block` lies within reach_a + rounding of the box of `to`'s block l (the
-// squared distance to the box rounded down a little).
+// Whether any row a of `block` lies within reach_a + rounding of the box of `to`'s block l.
 bool any_within(const Eigen::MatrixXd& block, const RowBlocks& columns, Eigen::Index l,
                 const Eigen::VectorXd& reach, double rounding) {
     for (Eigen::Index i = 0; i < block.rows(); ++i) {
-        const double distance2 = (columns.low.row(l) - block.row(i))
-                                     .cwiseMax(block.row(i) - columns.high.row(l))
-                                     .cwiseMax(0.0)
-                                     .squaredNorm();
-        if (distance2 * (1 - 1e-12) <= reach[i] + rounding) {
+        if (box_gap2(block.row(i), block.row(i), columns.low.row(l), columns.high.row(l)) <=
+            reach[i] + rounding) {
             return true;
         }
     }
@@ -165,7 +160,8 @@ Found nearest_of_block(const Eigen::MatrixXd& block, const RowBlocks& rows, Eige
     const RowBlocks& blocks = candidates.blocks;
     std::vector<double> lower_bound(static_cast<std::size_t>(blocks.count()));
     for (Eigen::Index l = 0; l < blocks.count(); ++l) {
-        lower_bound[static_cast<std::size_t>(l)] = box_distance2(rows, k, blocks, l);
+        lower_bound[static_cast<std::size_t>(l)] =
+            box_gap2(rows.low.row(k), rows.high.row(k), blocks.low.row(l), blocks.high.row(l));
     }
     std::vector<Eigen::Index> by_distance(lower_bound.size());
     std::iota(by_distance.begin(), by_distance.end(), Eigen::Index{0});
