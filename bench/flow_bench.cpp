@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Time per implicit-fairing step on the 48K-vertex horse ($GENFLOW_DATA/smoothing/horse_noisy.ply,
 // or a generated 50K-vertex torus without the data): the first step (symbolic analysis +
-// factorization + solve) and later steps separately (also with the differential computed
-// alongside the factorization), through the library (whichever backend it
-// was built with) and with CHOLMOD and Eigen's SimplicialLDLT side by side; one H1 step at the
-// size of a match's coarsest level. Also the rebuild of
-// the quasi-articulated metric (docs/formulas.md §6) at every flow step, on a generated 41K-vertex
-// sphere cut into a chain of 17 parts.
+// factorization + solve) and later steps separately (also in the smoothing flows' two halves,
+// with the differential computed after the update or alongside it), through the library (whichever
+// backend it was built with) and with CHOLMOD and Eigen's SimplicialLDLT side by side; one H1 step
+// at the size of a match's coarsest level. Also the rebuild of the quasi-articulated metric
+// (docs/formulas.md §6) at every flow step, on a generated 41K-vertex sphere cut into a chain of 17
+// parts.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/SparseCholesky>
@@ -75,16 +75,24 @@ void BM_FairingStepLater(benchmark::State& state) {
     }
 }
 
-// A later step with the area's differential computed alongside the factorization
-// (Metric::update_alongside(), as the fairing flows take their steps): against
-// BM_FairingStepLater, what the thread left idle by the lighter half gives back.
-void BM_FairingStepLaterAlongside(benchmark::State& state) {
+// A later step of the smoothing flows' factorization (in two halves, wide supernodes) with the
+// area's differential computed after the update (argument 0) or alongside the factorization, on
+// the thread the lighter half leaves idle (1; Metric::update_alongside(), as the fairing flows
+// take their steps).
+void BM_FairingStepLaterInHalves(benchmark::State& state) {
     const genflow::SurfaceAreaEnergy area;
-    genflow::H1Metric metric({.lambda = dt()});
+    genflow::H1Metric metric(
+        {.lambda = dt(), .factorization = genflow::Factorization::ByFlopDensityWide});
     metric.update(horse());
     Eigen::MatrixX3d differential;
+    const auto take_differential = [&] { differential = area.differential(horse()); };
     for (auto _ : state) {
-        metric.update_alongside(horse(), [&] { differential = area.differential(horse()); });
+        if (state.range(0) == 0) {
+            metric.update(horse());
+            take_differential();
+        } else {
+            metric.update_alongside(horse(), take_differential);
+        }
         benchmark::DoNotOptimize(metric.gradient(differential));
     }
 }
@@ -209,7 +217,10 @@ void BM_H1StepCoarse(benchmark::State& state) {
 
 BENCHMARK(BM_FairingStepFirst)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingStepLater)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_FairingStepLaterAlongside)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FairingStepLaterInHalves)
+    ->ArgName("alongside")
+    ->DenseRange(0, 1)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingAssembleOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FairingFiveStepsCurve)
     ->Apply(genflow::bench::cost_curve_sizes)
