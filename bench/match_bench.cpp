@@ -19,7 +19,6 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <numbers>
 #include <numeric>
@@ -228,38 +227,34 @@ void BM_EmbedLevelInTheClosestFace(benchmark::State& state) {
 
 // ZoomOut's nearest-row search (detail::nearest_rows()) in the embeddings of two noisy 10K
 // spheres, the first's functions through an orthogonal map, both weighted as ZoomOut weighs
-// them, at `size` functions; the whole product −2·from·toᵀ it
-// replaces is BM_WholeProductZoomOutEmbedding.
+// them, at `size` functions; the whole product −2·from·toᵀ it replaces is
+// BM_WholeProductZoomOutEmbedding. The eigenbases are made once; the embeddings of a size
+// before each benchmark's timed loop.
 struct ZoomOutEmbeddings {
     Eigen::MatrixXd from, to;
 };
 
-const ZoomOutEmbeddings& zoom_out_embeddings(Eigen::Index size) {
+ZoomOutEmbeddings zoom_out_embeddings(Eigen::Index size) {
     static const auto bases = [] {
         const genflow::TriangleMesh sphere = genflow::make_icosphere(5);
         const double noise = 0.1 * genflow::mean_edge_length(sphere);
         return std::pair{genflow::laplacian_eigenbasis(genflow::add_noise(sphere, noise, 1), 61),
                          genflow::laplacian_eigenbasis(genflow::add_noise(sphere, noise, 2), 61)};
     }();
-    static std::map<Eigen::Index, ZoomOutEmbeddings> embeddings;
-    auto [it, inserted] = embeddings.try_emplace(size);
-    if (inserted) {
-        const Eigen::RowVectorXd weights =
-            genflow::detail::embedding_weights(bases.second.values.segment(1, size));
-        std::mt19937 random(3);
-        std::normal_distribution<double> normal;
-        const Eigen::MatrixXd turn =
-            Eigen::HouseholderQR<Eigen::MatrixXd>(Eigen::MatrixXd::NullaryExpr(size, size, [&] {
-                return normal(random);
-            })).householderQ();
-        it->second.from = bases.first.functions.middleCols(1, size) * turn * weights.asDiagonal();
-        it->second.to = bases.second.functions.middleCols(1, size) * weights.asDiagonal();
-    }
-    return it->second;
+    const Eigen::RowVectorXd weights =
+        genflow::detail::embedding_weights(bases.second.values.segment(1, size));
+    std::mt19937 random(3);
+    std::normal_distribution<double> normal;
+    const Eigen::MatrixXd turn =
+        Eigen::HouseholderQR<Eigen::MatrixXd>(Eigen::MatrixXd::NullaryExpr(size, size, [&] {
+            return normal(random);
+        })).householderQ();
+    return {bases.first.functions.middleCols(1, size) * turn * weights.asDiagonal(),
+            bases.second.functions.middleCols(1, size) * weights.asDiagonal()};
 }
 
 void BM_NearestRowsZoomOutEmbedding(benchmark::State& state) {
-    const ZoomOutEmbeddings& e = zoom_out_embeddings(state.range(0));
+    const ZoomOutEmbeddings e = zoom_out_embeddings(state.range(0));
     for (auto _ : state) {
         benchmark::DoNotOptimize(genflow::detail::nearest_rows(e.from, e.to).data());
     }
@@ -268,7 +263,7 @@ void BM_NearestRowsZoomOutEmbedding(benchmark::State& state) {
 
 // The whole product and its row minima, as the search did before it skipped blocks.
 void BM_WholeProductZoomOutEmbedding(benchmark::State& state) {
-    const ZoomOutEmbeddings& e = zoom_out_embeddings(state.range(0));
+    const ZoomOutEmbeddings e = zoom_out_embeddings(state.range(0));
     for (auto _ : state) {
         const Eigen::MatrixXd distances =
             (-2 * e.from * e.to.transpose()).rowwise() + e.to.rowwise().squaredNorm().transpose();
